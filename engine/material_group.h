@@ -1,0 +1,76 @@
+// All particles of one material, and the interface through which the engine updates them.
+//
+// The engine never calls a constitutive model per particle through a virtual function: it
+// calls MaterialGroup::gridToParticles once per (block, material) range, and the group's
+// template code (materials/solid_group.h, materials/fluid_group.h) runs the model inline.
+#pragma once
+
+#include "engine/particle_set.h"
+#include "engine/types.h"
+
+#include <string>
+#include <vector>
+
+namespace talus {
+
+/// Padded block edge: a block's particles reach nodes 0..9 from its origin.
+constexpr int kPad = kBlockDim + 2;
+constexpr int kPadNodes = kPad * kPad * kPad;
+inline constexpr int padIndex(int i, int j, int k) { return (i * kPad + j) * kPad + k; }
+
+/// What G2P needs to know about one block: grid velocities of its padded neighbourhood.
+struct G2PBlock {
+  const Vec4* nodes;    ///< kPadNodes grid nodes (mass, velocity), padIndex order
+  int origin[3];        ///< global index of the block's first node
+  Real dt, dx, invDx;
+};
+
+/// Per-thread results of a G2P pass.
+struct G2PStats {
+  Real maxSpeed = 0;
+  size_t nonFinite = 0; ///< particles whose velocity or stress became NaN/inf
+  void merge(const G2PStats& o) {
+    if (o.maxSpeed > maxSpeed) maxSpeed = o.maxSpeed;
+    nonFinite += o.nonFinite;
+  }
+};
+
+class MaterialGroup {
+public:
+  MaterialGroup(std::string name, int index, double density)
+      : name_(std::move(name)), index_(index), density_(density) {}
+  virtual ~MaterialGroup() = default;
+
+  const std::string& name() const { return name_; }
+  int index() const { return index_; }     ///< position in the scene's material list
+  double density() const { return density_; } ///< reference density (kg/m3)
+  size_t size() const { return particles.size(); }
+
+  ParticleSet particles;
+  /// Particles of active block b are [blockStart[b], blockStart[b+1]) after binning.
+  std::vector<uint32_t> blockStart;
+
+  virtual const char* modelName() const = 0;
+  /// Fastest elastic/acoustic wave speed (m/s); limits the time step.
+  virtual double waveSpeed() const = 0;
+  /// Gather velocities for particles [begin, end), update deformation, stress and position.
+  virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
+
+  /// Keep per-particle model state aligned with `particles`.
+  virtual void permuteState(const std::vector<uint32_t>& perm) = 0;
+  virtual void compactState(const std::vector<uint8_t>& keep) = 0;
+  /// Initialise model state for particles appended to `particles` (undeformed, unyielded).
+  virtual void resizeState(size_t n) = 0;
+  virtual size_t stateBytesPerParticle() const = 0;
+
+  /// Optional per-particle scalar outputs of the model (e.g. plastic strain, pressure).
+  virtual std::vector<std::string> scalarNames() const { return {}; }
+  virtual void scalar(const std::string& name, std::vector<float>& out) const { out.clear(); }
+
+private:
+  std::string name_;
+  int index_;
+  double density_;
+};
+
+} // namespace talus

@@ -1,0 +1,16 @@
+// Sort particles by the block that owns them and rebuild the active grid topology.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/sparse_grid.h"
+
+#include <vector>
+
+namespace talus {
+
+/// Rebuilds grid.topology from particle positions, stably sorts every group's particles by
+/// owning block (physically reordering their arrays), fills each group's blockStart, the
+/// grid's owning-block list and colour lists, and zeroes the node arrays.
+void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid);
+
+} // namespace talus

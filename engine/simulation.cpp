@@ -1,0 +1,226 @@
+#include "engine/simulation.h"
+
+#include "engine/grid_update.h"
+#include "engine/particle_binning.h"
+#include "engine/transfer_g2p.h"
+#include "engine/transfer_p2g.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace talus {
+
+namespace {
+class ScopedTimer {
+public:
+  explicit ScopedTimer(double& acc) : acc_(acc), t0_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() { acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+private:
+  double& acc_;
+  std::chrono::steady_clock::time_point t0_;
+};
+} // namespace
+
+Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<MaterialGroup>> groups)
+    : settings_(std::move(settings)), groups_(std::move(groups)) {
+  grid_.dx = Real(settings_.dx);
+  for (auto& g : groups_) groupPtrs_.push_back(g.get());
+  if (settings_.terrain) terrainCache_ = std::make_unique<TerrainCache>(settings_.terrain, settings_.dx);
+  int maxIndex = 0;
+  for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
+  massRemoved_.assign(size_t(maxIndex), 0.0);
+  initialMass_ = totalMass();
+  for (auto* g : groupPtrs_)
+    for (const Vec3& v : g->particles.v) maxSpeed_ = std::max(maxSpeed_, double(v.norm()));
+}
+
+double Simulation::maxWaveSpeed() const {
+  double c = 0;
+  for (const auto* g : groupPtrs_)
+    if (g->size()) c = std::max(c, g->waveSpeed());
+  return c;
+}
+
+double Simulation::stableDt() const {
+  const double speed = maxWaveSpeed() + maxSpeed_;
+  double dt = speed > 0 ? settings_.cfl * settings_.dx / speed : settings_.maxDt;
+  // With no wave speed and no motion yet, gravity alone sets the scale: move at most cfl*dx.
+  if (!(speed > 0)) {
+    const double g = settings_.gravity.norm();
+    dt = g > 0 ? std::sqrt(2 * settings_.cfl * settings_.dx / g) : 1e-3;
+  }
+  return std::min(dt, settings_.maxDt);
+}
+
+double Simulation::step(double dtCap) {
+  const double dt = std::min(stableDt(), dtCap);
+  const Real rdt = Real(dt);
+  {
+    ScopedTimer t(times_.bin);
+    binParticles(groupPtrs_, grid_);
+  }
+  if (terrainCache_) {
+    ScopedTimer t(times_.terrain);
+    terrainCache_->attach(grid_.topology, grid_.terrain);
+  }
+  {
+    ScopedTimer t(times_.p2g);
+    particlesToGrid(groupPtrs_, grid_, rdt);
+  }
+  {
+    ScopedTimer t(times_.grid);
+    GridUpdateParams prm;
+    prm.dt = rdt;
+    prm.gravity = settings_.gravity.cast<Real>();
+    prm.domain = settings_.domain;
+    prm.hasTerrain = terrainCache_ != nullptr;
+    prm.terrain = settings_.terrainBoundary;
+    updateGridVelocities(grid_, prm);
+  }
+  G2PStats stats;
+  {
+    ScopedTimer t(times_.g2p);
+    stats = gridToParticles(groupPtrs_, grid_, rdt);
+  }
+  particleSteps_ += particleCount();
+  time_ += dt;
+  ++steps_;
+  maxSpeed_ = stats.maxSpeed;
+  checkFinite(stats.nonFinite);
+  {
+    ScopedTimer t(times_.cull);
+    cullEscaped();
+  }
+  return dt;
+}
+
+void Simulation::advanceTo(double t, const std::function<void()>& onStep) {
+  while (time_ < t) {
+    const double remaining = t - time_;
+    const double dt = stableDt();
+    step(remaining <= dt ? remaining : (remaining < 2 * dt ? 0.5 * remaining : dt));
+    if (remaining <= dt) time_ = t; // exact arrival despite rounding
+    if (onStep) onStep();
+  }
+}
+
+void Simulation::checkFinite(size_t nonFinite) const {
+  if (!nonFinite) return;
+  for (const auto* g : groupPtrs_) {
+    const auto& P = g->particles;
+    for (size_t p = 0; p < P.size(); ++p) {
+      const bool bad = !P.v[p].allFinite() || !P.x[p].allFinite() || !P.tau[p].matrix().allFinite();
+      if (bad) {
+        std::ostringstream s;
+        const Vec3d xw = P.x[p].cast<double>() + settings_.origin;
+        s << "non-finite state at step " << steps_ << " (t = " << time_ << " s): particle " << p
+          << " of material '" << g->name() << "' (" << g->modelName() << ") at (" << xw.x() << ", "
+          << xw.y() << ", " << xw.z() << "), velocity (" << P.v[p].transpose() << ")";
+        throw NumericalError(s.str());
+      }
+    }
+  }
+  throw NumericalError("non-finite particle state at step " + std::to_string(steps_));
+}
+
+void Simulation::cullEscaped() {
+  const double half = 0.5 * settings_.dx;
+  const bool open = settings_.domain.walls.type == BoundaryType::Open;
+  const Vec3 lo = (settings_.domain.min - Vec3d::Constant(open ? 0.0 : half)).cast<Real>();
+  const Vec3 hi = (settings_.domain.max + Vec3d::Constant(open ? 0.0 : half)).cast<Real>();
+  for (auto* g : groupPtrs_) {
+    auto& P = g->particles;
+    const size_t n = P.size();
+    std::vector<uint8_t> keep(n);
+    size_t kept = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 8192), size_t(0),
+        [&](const auto& r, size_t acc) {
+          for (size_t p = r.begin(); p != r.end(); ++p) {
+            const Vec3& x = P.x[p];
+            keep[p] = (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
+            acc += keep[p];
+          }
+          return acc;
+        },
+        std::plus<size_t>());
+    if (kept == n) continue;
+    double removed = 0;
+    for (size_t p = 0; p < n; ++p)
+      if (!keep[p]) removed += double(P.mass[p]);
+    massRemoved_[size_t(g->index())] += removed;
+    P.forEachArray([&](auto& a) { compactInPlace(a, keep); });
+    g->compactState(keep);
+  }
+}
+
+size_t Simulation::particleCount() const {
+  size_t n = 0;
+  for (const auto* g : groupPtrs_) n += g->size();
+  return n;
+}
+
+double Simulation::totalMass() const {
+  double m = 0;
+  for (const auto* g : groupPtrs_)
+    for (Real mp : g->particles.mass) m += double(mp);
+  return m;
+}
+
+double Simulation::totalMassRemoved() const {
+  double m = 0;
+  for (double r : massRemoved_) m += r;
+  return m;
+}
+
+Vec3d Simulation::linearMomentum() const {
+  Vec3d p = Vec3d::Zero();
+  for (const auto* g : groupPtrs_)
+    for (size_t i = 0; i < g->size(); ++i) p += double(g->particles.mass[i]) * g->particles.v[i].cast<double>();
+  return p;
+}
+
+Vec3d Simulation::angularMomentum() const {
+  Vec3d L = Vec3d::Zero();
+  const double d = 0.25 * settings_.dx * settings_.dx;
+  for (const auto* g : groupPtrs_) {
+    const auto& P = g->particles;
+    for (size_t i = 0; i < P.size(); ++i) {
+      const Vec3d x = P.x[i].cast<double>(), v = P.v[i].cast<double>();
+      const Mat3d C = P.C[i].cast<double>();
+      const Vec3d affine(C(2, 1) - C(1, 2), C(0, 2) - C(2, 0), C(1, 0) - C(0, 1));
+      L += double(P.mass[i]) * (x.cross(v) + d * affine);
+    }
+  }
+  return L;
+}
+
+double Simulation::kineticEnergy() const {
+  double e = 0;
+  for (const auto* g : groupPtrs_)
+    for (size_t i = 0; i < g->size(); ++i)
+      e += 0.5 * double(g->particles.mass[i]) * double(g->particles.v[i].squaredNorm());
+  return e;
+}
+
+double Simulation::potentialEnergy() const {
+  double e = 0;
+  for (const auto* g : groupPtrs_)
+    for (size_t i = 0; i < g->size(); ++i)
+      e -= double(g->particles.mass[i]) * settings_.gravity.dot(g->particles.x[i].cast<double>());
+  return e;
+}
+
+size_t Simulation::particleBytes() const {
+  size_t b = 0;
+  for (const auto* g : groupPtrs_) b += g->size() * (ParticleSet::bytesPerParticle() + g->stateBytesPerParticle());
+  return b;
+}
+
+size_t Simulation::gridBytes() const {
+  return grid_.memoryBytes() + (terrainCache_ ? terrainCache_->memoryBytes() : 0);
+}
+
+} // namespace talus

@@ -1,0 +1,63 @@
+// Grid-to-particle gather (APIC/MLS-MPM), shared by every material group.
+#pragma once
+
+#include "engine/bspline.h"
+#include "engine/material_group.h"
+
+#include <cmath>
+
+namespace talus {
+
+/// Gathers v and C for particles [begin, end), lets `update(i, C)` advance the material state
+/// (deformation, return mapping, Kirchhoff stress), then advects x with the new velocity.
+template <class UpdateFn>
+inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, size_t end,
+                            G2PStats& stats, UpdateFn&& update) {
+  const Real invDx = blk.invDx, dt = blk.dt;
+  const Real cScale = Real(4) * invDx; // D^-1 = 4/dx^2, times dx from the stencil offsets
+  Real maxSpeed2 = stats.maxSpeed * stats.maxSpeed;
+  for (size_t p = begin; p < end; ++p) {
+    const QuadraticStencil s(P.x[p] * invDx);
+    const int l0 = s.base[0] - blk.origin[0], l1 = s.base[1] - blk.origin[1],
+              l2 = s.base[2] - blk.origin[2];
+    // Node records are (mass, vx, vy, vz); the first lane accumulates junk and is ignored.
+    Vec4 v = Vec4::Zero(), bi = Vec4::Zero(), bj = Vec4::Zero(), bk = Vec4::Zero();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const Real wij = s.w[0][i] * s.w[1][j];
+        const Vec4* row = blk.nodes + padIndex(l0 + i, l1 + j, l2);
+        const Vec4 w0 = (wij * s.w[2][0]) * row[0];
+        const Vec4 w1 = (wij * s.w[2][1]) * row[1];
+        const Vec4 w2 = (wij * s.w[2][2]) * row[2];
+        const Vec4 sum = w0 + w1 + w2;
+        v += sum;
+        bi += Real(i) * sum;
+        bj += Real(j) * sum;
+        bk += w1 + Real(2) * w2;
+      }
+    const Vec3 vel = v.tail<3>();
+    Mat3 C;
+    C.col(0) = cScale * (bi.tail<3>() - s.f[0] * vel);
+    C.col(1) = cScale * (bj.tail<3>() - s.f[1] * vel);
+    C.col(2) = cScale * (bk.tail<3>() - s.f[2] * vel);
+    P.v[p] = vel;
+    P.C[p] = C;
+    update(p, C);
+    P.x[p] += dt * vel;
+    const Real s2 = vel.squaredNorm();
+    if (!(s2 <= maxSpeed2)) {
+      if (std::isfinite(s2)) maxSpeed2 = s2;
+      else ++stats.nonFinite;
+    }
+  }
+  stats.maxSpeed = std::sqrt(maxSpeed2);
+}
+
+} // namespace talus
+
+namespace talus {
+struct SparseGrid;
+/// Runs G2P (and through each group, deformation update, return mapping and stress) for all
+/// owning blocks in parallel. Blocks only read the grid, so no colouring is needed.
+G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt);
+} // namespace talus

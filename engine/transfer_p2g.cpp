@@ -1,0 +1,83 @@
+#include "engine/transfer_p2g.h"
+
+#include "engine/bspline.h"
+
+#include <tbb/parallel_for.h>
+
+namespace talus {
+
+namespace {
+
+/// Scatter particles [begin, end) of one group into the padded block buffer.
+void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePerMass, Real dt,
+                  Real dx, const int origin[3], Vec4* buf) {
+  const Real invDx = Real(1) / dx;
+  const Real stressScale = dt * volumePerMass * Real(4) * invDx * invDx; // dt V0 D^-1 per unit mass
+  for (size_t p = begin; p < end; ++p) {
+    const QuadraticStencil s(P.x[p] * invDx);
+    const Real m = P.mass[p];
+    const Mat3 A = m * (P.C[p] - stressScale * P.tau[p].matrix()); // affine momentum matrix
+    const Mat3 Ad = dx * A;
+    const Vec3 f(s.f[0], s.f[1], s.f[2]);
+    // Momentum carried to node (i,j,k): m v + A (x_i - x_p) = q0 + i Ad0 + j Ad1 + k Ad2.
+    Vec4 q0;
+    q0 << m, m * P.v[p] - Ad * f;
+    Vec4 a0, a1, a2;
+    a0 << 0, Ad.col(0);
+    a1 << 0, Ad.col(1);
+    a2 << 0, Ad.col(2);
+    const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
+    for (int i = 0; i < 3; ++i) {
+      const Vec4 qi = q0 + Real(i) * a0;
+      for (int j = 0; j < 3; ++j) {
+        const Vec4 qij = qi + Real(j) * a1;
+        const Real wij = s.w[0][i] * s.w[1][j];
+        Vec4* row = buf + padIndex(l0 + i, l1 + j, l2);
+        row[0] += (wij * s.w[2][0]) * qij;
+        row[1] += (wij * s.w[2][1]) * (qij + a2);
+        row[2] += (wij * s.w[2][2]) * (qij + Real(2) * a2);
+      }
+    }
+  }
+}
+
+/// Add the padded buffer of block b into b and its 7 upper neighbours.
+void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
+  const auto& up = grid.topology.upper(b);
+  for (int d = 0; d < 8; ++d) {
+    Vec4* dst = grid.block(uint32_t(up[d]));
+    const int ox = (d >> 2) * kBlockDim, oy = ((d >> 1) & 1) * kBlockDim, oz = (d & 1) * kBlockDim;
+    const int nx = (d >> 2) ? 2 : kBlockDim, ny = ((d >> 1) & 1) ? 2 : kBlockDim,
+              nz = (d & 1) ? 2 : kBlockDim;
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j) {
+        const Vec4* src = buf + padIndex(ox + i, oy + j, oz);
+        Vec4* out = dst + blockNodeIndex(i, j, 0);
+        for (int k = 0; k < nz; ++k) out[k] += src[k];
+      }
+  }
+}
+
+} // namespace
+
+void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
+  for (const auto& colour : grid.colours) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, colour.size(), 1), [&](const auto& r) {
+      std::vector<Vec4> buf(kPadNodes);
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        const uint32_t b = colour[c];
+        std::fill(buf.begin(), buf.end(), Vec4::Zero());
+        const BlockCoord& bc = grid.topology.coord(b);
+        const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
+        for (const MaterialGroup* g : groups) {
+          const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
+          if (begin != end)
+            scatterRange(g->particles, begin, end, Real(1.0 / g->density()), dt, grid.dx, origin, buf.data());
+        }
+        flush(buf.data(), grid, b);
+      }
+    });
+  }
+}
+
+} // namespace talus

@@ -1,0 +1,89 @@
+#include "io/body_shapes.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace talus {
+
+namespace {
+
+class BoxShape final : public BodyShape {
+public:
+  BoxShape(const Vec3d& centre, const Vec3d& size, const Mat3d& rot) : c_(centre), h_(0.5 * size), R_(rot) {}
+  bool contains(const Vec3d& x) const override {
+    const Vec3d l = R_.transpose() * (x - c_);
+    return (l.array().abs() <= h_.array()).all();
+  }
+  void bounds(Vec3d& lo, Vec3d& hi) const override {
+    const Vec3d e = R_.cwiseAbs() * h_;
+    lo = c_ - e, hi = c_ + e;
+  }
+  double volume() const override { return 8 * h_.prod(); }
+  Vec3d centre() const override { return c_; }
+private:
+  Vec3d c_, h_;
+  Mat3d R_;
+};
+
+class SphereShape final : public BodyShape {
+public:
+  SphereShape(const Vec3d& c, double r) : c_(c), r_(r) {}
+  bool contains(const Vec3d& x) const override { return (x - c_).squaredNorm() <= r_ * r_; }
+  void bounds(Vec3d& lo, Vec3d& hi) const override { lo = c_.array() - r_, hi = c_.array() + r_; }
+  double volume() const override { return 4.0 / 3.0 * M_PI * r_ * r_ * r_; }
+  Vec3d centre() const override { return c_; }
+private:
+  Vec3d c_;
+  double r_;
+};
+
+class CylinderShape final : public BodyShape {
+public:
+  CylinderShape(const Vec3d& a, const Vec3d& b, double r) : a_(a), b_(b), r_(r) {}
+  bool contains(const Vec3d& x) const override {
+    const Vec3d ax = b_ - a_;
+    const double t = (x - a_).dot(ax) / ax.squaredNorm();
+    if (t < 0 || t > 1) return false;
+    return (x - a_ - t * ax).squaredNorm() <= r_ * r_;
+  }
+  void bounds(Vec3d& lo, Vec3d& hi) const override {
+    const Vec3d ax = (b_ - a_).normalized();
+    const Vec3d e = r_ * (Vec3d::Ones() - ax.cwiseProduct(ax)).cwiseMax(0.0).cwiseSqrt();
+    lo = a_.cwiseMin(b_) - e, hi = a_.cwiseMax(b_) + e;
+  }
+  double volume() const override { return M_PI * r_ * r_ * (b_ - a_).norm(); }
+  Vec3d centre() const override { return 0.5 * (a_ + b_); }
+private:
+  Vec3d a_, b_;
+  double r_;
+};
+
+} // namespace
+
+std::unique_ptr<BodyShape> readBodyShape(const ConfigTable& t, const Vec3d& origin) {
+  const std::string shape = t.choice("shape", "", {"box", "sphere", "cylinder"});
+  if (shape == "box") {
+    Mat3d R = Mat3d::Identity();
+    if (t.has("rotation")) {
+      const Vec3d a = t.vec3("rotation") * (M_PI / 180.0);
+      R = (Eigen::AngleAxisd(a.z(), Vec3d::UnitZ()) * Eigen::AngleAxisd(a.y(), Vec3d::UnitY()) *
+           Eigen::AngleAxisd(a.x(), Vec3d::UnitX())).toRotationMatrix();
+    }
+    if (t.has("min") || t.has("max")) {
+      if (t.has("center") || t.has("size")) t.fail("min", "give either min/max or center/size, not both");
+      const Vec3d lo = t.vec3("min"), hi = t.vec3("max");
+      for (int d = 0; d < 3; ++d)
+        if (!(hi[d] > lo[d])) t.fail("max", "must exceed min on every axis");
+      return std::make_unique<BoxShape>(0.5 * (lo + hi) - origin, hi - lo, R);
+    }
+    const Vec3d size = t.vec3("size");
+    if (!(size.minCoeff() > 0)) t.fail("size", "must be positive on every axis");
+    return std::make_unique<BoxShape>(t.vec3("center") - origin, size, R);
+  }
+  if (shape == "sphere") return std::make_unique<SphereShape>(t.vec3("center") - origin, t.positive("radius"));
+  const Vec3d a = t.vec3("start"), b = t.vec3("end");
+  if (!((b - a).norm() > 0)) t.fail("end", "must differ from start");
+  return std::make_unique<CylinderShape>(a - origin, b - origin, t.positive("radius"));
+}
+
+} // namespace talus

@@ -1,0 +1,121 @@
+#include "io/h5_file.h"
+
+#include <cstdint>
+
+namespace talus::h5 {
+
+namespace {
+// Silence HDF5's own error stack printing; failures surface as exceptions with our message.
+struct QuietErrors {
+  QuietErrors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+};
+void quiet() { static QuietErrors q; }
+} // namespace
+
+Handle createFile(const std::string& path) {
+  quiet();
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot create HDF5 file " + path);
+  return Handle(f, H5Fclose);
+}
+
+Handle openFile(const std::string& path) {
+  quiet();
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open HDF5 file " + path);
+  return Handle(f, H5Fclose);
+}
+
+Handle createGroup(hid_t parent, const std::string& name) {
+  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+}
+
+template <> hid_t nativeType<double>() { return H5T_NATIVE_DOUBLE; }
+template <> hid_t nativeType<float>() { return H5T_NATIVE_FLOAT; }
+template <> hid_t nativeType<int32_t>() { return H5T_NATIVE_INT32; }
+template <> hid_t nativeType<uint32_t>() { return H5T_NATIVE_UINT32; }
+template <> hid_t nativeType<uint64_t>() { return H5T_NATIVE_UINT64; }
+template <> hid_t nativeType<uint8_t>() { return H5T_NATIVE_UINT8; }
+
+template <class T>
+void writeDataset(hid_t parent, const std::string& name, const T* data, size_t rows, size_t cols) {
+  hsize_t dims[2] = {hsize_t(rows), hsize_t(cols)};
+  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose);
+  Handle set(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose);
+  if (rows && H5Dwrite(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw std::runtime_error("cannot write HDF5 dataset " + name);
+}
+
+template <class T>
+std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, size_t& cols) {
+  Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+  Handle space(H5Dget_space(set), H5Sclose);
+  hsize_t dims[2] = {0, 1};
+  const int nd = H5Sget_simple_extent_ndims(space);
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  rows = dims[0];
+  cols = nd == 2 ? dims[1] : 1;
+  std::vector<T> out(rows * cols);
+  if (!out.empty() && H5Dread(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw std::runtime_error("cannot read HDF5 dataset " + name);
+  return out;
+}
+
+#define TALUS_H5_INSTANTIATE(T)                                                                     \
+  template void writeDataset<T>(hid_t, const std::string&, const T*, size_t, size_t);             \
+  template std::vector<T> readDataset<T>(hid_t, const std::string&, size_t&, size_t&);
+TALUS_H5_INSTANTIATE(double)
+TALUS_H5_INSTANTIATE(float)
+TALUS_H5_INSTANTIATE(int32_t)
+TALUS_H5_INSTANTIATE(uint32_t)
+TALUS_H5_INSTANTIATE(uint64_t)
+TALUS_H5_INSTANTIATE(uint8_t)
+#undef TALUS_H5_INSTANTIATE
+
+bool exists(hid_t file, const std::string& path) { return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0; }
+
+void writeAttribute(hid_t obj, const std::string& name, double value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+}
+
+void writeAttribute(hid_t obj, const std::string& name, const std::string& value) {
+  writeAttribute(obj, name, std::vector<std::string>{value});
+}
+
+void writeAttribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  hsize_t n = values.size();
+  Handle space(values.size() == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle attr(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  H5Awrite(attr, type, ptrs.data());
+}
+
+double readDoubleAttribute(hid_t obj, const std::string& name) {
+  Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  double v = 0;
+  H5Aread(attr, H5T_NATIVE_DOUBLE, &v);
+  return v;
+}
+
+std::vector<std::string> readStringsAttribute(hid_t obj, const std::string& name) {
+  Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle space(H5Aget_space(attr), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type, H5T_VARIABLE);
+  std::vector<char*> ptrs(size_t(n), nullptr);
+  H5Aread(attr, type, ptrs.data());
+  std::vector<std::string> out;
+  for (char* p : ptrs) out.emplace_back(p ? p : "");
+  H5Dvlen_reclaim(type, space, H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+} // namespace talus::h5

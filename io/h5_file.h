@@ -1,0 +1,54 @@
+// Thin RAII helpers over the HDF5 C API (datasets of numbers and string attributes).
+#pragma once
+
+#include <hdf5.h>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace talus::h5 {
+
+/// Owns an hid_t and closes it with the matching H5*close.
+class Handle {
+public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {
+    if (id_ < 0) throw std::runtime_error("HDF5 call failed");
+  }
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  Handle& operator=(Handle&& o) noexcept {
+    reset();
+    id_ = o.id_, close_ = o.close_, o.id_ = -1;
+    return *this;
+  }
+  ~Handle() { reset(); }
+  operator hid_t() const { return id_; }
+  void reset() {
+    if (id_ >= 0 && close_) close_(id_);
+    id_ = -1;
+  }
+private:
+  hid_t id_ = -1;
+  herr_t (*close_)(hid_t) = nullptr;
+};
+
+Handle createFile(const std::string& path);
+Handle openFile(const std::string& path);
+Handle createGroup(hid_t parent, const std::string& name);
+
+template <class T> hid_t nativeType();
+
+/// Writes a rows x cols dataset (cols = 1 writes a 1-D dataset).
+template <class T>
+void writeDataset(hid_t parent, const std::string& name, const T* data, size_t rows, size_t cols);
+template <class T>
+std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, size_t& cols);
+bool exists(hid_t file, const std::string& path);
+
+void writeAttribute(hid_t obj, const std::string& name, double value);
+void writeAttribute(hid_t obj, const std::string& name, const std::string& value);
+void writeAttribute(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+double readDoubleAttribute(hid_t obj, const std::string& name);
+std::vector<std::string> readStringsAttribute(hid_t obj, const std::string& name);
+
+} // namespace talus::h5

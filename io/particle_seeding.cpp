@@ -1,0 +1,71 @@
+#include "io/particle_seeding.h"
+
+#include <cmath>
+
+namespace talus {
+
+namespace {
+uint64_t splitmix(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+double unit(uint64_t& state) { // uniform in [0, 1)
+  state = splitmix(state);
+  return double(state >> 11) * (1.0 / 9007199254740992.0);
+}
+int cubeRoot(int n) {
+  const int r = int(std::lround(std::cbrt(double(n))));
+  return r * r * r == n ? r : 0;
+}
+} // namespace
+
+Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
+  uint64_t h = splitmix(spec.seed ^ splitmix(uint64_t(i) * 73856093ull ^ splitmix(uint64_t(j) * 19349663ull ^
+                                                                           splitmix(uint64_t(k) * 83492791ull))));
+  h = splitmix(h + uint64_t(s));
+  const int n = cubeRoot(spec.particlesPerCell);
+  if (n > 0) {
+    const int a = s / (n * n), b = (s / n) % n, c = s % n;
+    Vec3d p((a + 0.5) / n, (b + 0.5) / n, (c + 0.5) / n);
+    if (spec.jitter > 0)
+      for (int d = 0; d < 3; ++d) p[d] += (unit(h) - 0.5) * spec.jitter / n;
+    return p;
+  }
+  // Stratify along x so samples never cluster in one half of the cell.
+  const double ppc = spec.particlesPerCell;
+  return {(s + unit(h)) / ppc, unit(h), unit(h)};
+}
+
+size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
+                  const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
+                  MaterialGroup& group) {
+  const double dx = spec.dx;
+  const double volume = dx * dx * dx / spec.particlesPerCell;
+  const Real mass = Real(group.density() * volume);
+  int64_t c0[3], c1[3];
+  for (int d = 0; d < 3; ++d) {
+    c0[d] = int64_t(std::floor(lo[d] / dx));
+    c1[d] = int64_t(std::ceil(hi[d] / dx));
+  }
+  ParticleSet& P = group.particles;
+  const size_t before = P.size();
+  for (int64_t i = c0[0]; i < c1[0]; ++i)
+    for (int64_t j = c0[1]; j < c1[1]; ++j)
+      for (int64_t k = c0[2]; k < c1[2]; ++k)
+        for (int s = 0; s < spec.particlesPerCell; ++s) {
+          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
+          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
+          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          P.x.push_back(x.cast<Real>());
+          P.v.push_back(velocity(x).cast<Real>());
+          P.C.push_back(Mat3::Zero());
+          P.tau.push_back(Sym3{});
+          P.mass.push_back(mass);
+        }
+  group.resizeState(P.size());
+  return P.size() - before;
+}
+
+} // namespace talus

@@ -1,0 +1,30 @@
+// Filling regions with particles: particles_per_cell samples per grid cell, deterministic.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/terrain.h"
+
+#include <functional>
+
+namespace talus {
+
+struct SeedSpec {
+  double dx = 0.1;
+  int particlesPerCell = 8;
+  double jitter = 0;         ///< lattice jitter as a fraction of the sub-cell spacing, [0, 1]
+  uint64_t seed = 0;
+  const TerrainSdf* terrain = nullptr; ///< samples inside the ground are skipped
+};
+
+/// Sample offsets inside a unit cell: a lattice when particles_per_cell is a cube (1, 8, 27...),
+/// otherwise stratified random points; both hashed from (seed, cell, sample) so the result does
+/// not depend on body order or thread count.
+Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s);
+
+/// Appends particles for every sample in [lo, hi] (local frame) where `inside` holds.
+/// Each particle gets volume dx^3 / ppc and mass density * volume. Returns the count.
+size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
+                  const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
+                  MaterialGroup& group);
+
+} // namespace talus

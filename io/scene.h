@@ -1,0 +1,50 @@
+// A scene file turned into everything a run needs: settings, seeded material groups, outputs.
+#pragma once
+
+#include "engine/config_table.h"
+#include "engine/simulation.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+struct OutputSettings {
+  std::string directory = "talus_out";
+  double frameInterval = 0; ///< seconds between frames; 0 writes only the final state
+};
+
+struct BodyReport {
+  std::string label;    ///< "bodies[i]" or the body's name
+  std::string material;
+  std::string kind;
+  size_t particles = 0;
+  double seededVolume = 0;    ///< particles * dx^3 / ppc
+  double geometricVolume = 0; ///< of the shape (before terrain clipping)
+};
+
+struct SceneSetup {
+  std::string file;
+  SimulationSettings settings;
+  std::vector<std::unique_ptr<MaterialGroup>> groups;
+  std::vector<std::string> materialNames;
+  double endTime = 1;
+  int particlesPerCell = 8;
+  OutputSettings output;
+  std::vector<BodyReport> bodies;
+};
+
+/// Reads every section, creates and seeds the material groups, and rejects unknown keys.
+/// Throws InputError naming file, line and key.
+SceneSetup buildScene(const ConfigTable& root);
+
+/// Convenience: parse a file (or text) with `--set` overrides and build it.
+SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides = {});
+SceneSetup loadSceneString(const std::string& text, const std::string& name,
+                           const std::vector<std::string>& overrides = {});
+
+/// The scene `talus run` uses when no file is given (data/scenes/default.toml, compiled in).
+const std::string& defaultSceneText();
+
+} // namespace talus

@@ -1,0 +1,19 @@
+// Purely elastic solid: Hencky St. Venant-Kirchhoff, no plasticity.
+#pragma once
+
+#include "materials/hencky.h"
+
+namespace talus {
+
+struct ElasticModel {
+  static constexpr const char* kName = "elastic";
+  struct State {};
+
+  HenckyElasticity elastic;
+
+  bool project(Vec3d&, State&) const { return false; }
+  Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
+  double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
+};
+
+} // namespace talus

@@ -1,0 +1,48 @@
+// Material group for elastoplastic solids: stores F^E and the model's plastic state per particle.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/transfer_g2p.h"
+#include "materials/hencky.h"
+
+namespace talus {
+
+template <class Model>
+class SolidGroup final : public MaterialGroup {
+public:
+  SolidGroup(std::string name, int index, double density, const Model& model)
+      : MaterialGroup(std::move(name), index, density), model(model) {}
+
+  Model model;
+  std::vector<Mat3> F;                        ///< elastic deformation gradient
+  std::vector<typename Model::State> state;   ///< plastic state
+
+  const char* modelName() const override { return Model::kName; }
+  double waveSpeed() const override { return model.waveSpeed(density()); }
+
+  void gridToParticles(const G2PBlock& blk, size_t begin, size_t end, G2PStats& stats) override {
+    const double dt = blk.dt;
+    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C) {
+      const Mat3d Ftrial = (Mat3d::Identity() + dt * C.template cast<double>()) * F[p].template cast<double>();
+      updateSolid(model, Ftrial, state[p], F[p], particles.tau[p]);
+    });
+  }
+
+  void permuteState(const std::vector<uint32_t>& perm) override {
+    gatherInPlace(F, perm);
+    gatherInPlace(state, perm);
+  }
+  void compactState(const std::vector<uint8_t>& keep) override {
+    compactInPlace(F, keep);
+    compactInPlace(state, keep);
+  }
+  void resizeState(size_t n) override {
+    F.resize(n, Mat3::Identity());
+    state.resize(n, typename Model::State{});
+  }
+  size_t stateBytesPerParticle() const override {
+    return sizeof(Mat3) + sizeof(typename Model::State);
+  }
+};
+
+} // namespace talus
