@@ -40,9 +40,16 @@ void ConfigTable::fail(const std::string& key, const std::string& message) const
                    message);
 }
 
+void ConfigTable::missing(const std::string& key) const {
+  for (const auto& [k, v] : values_)
+    if (!asked_.count(k) && editDistance(k, key) <= std::max<int>(2, int(key.size()) / 3))
+      throw InputError(file_, v.line, keyPath(k), "unknown key (did you mean '" + key + "'?)");
+  fail("", "missing required key '" + key + "'");
+}
+
 double ConfigTable::number(const std::string& key) const {
   const ConfigValue* v = find(key);
-  if (!v) fail("", "missing required key '" + key + "'");
+  if (!v) missing(key);
   if (!v->isNumber()) fail(key, "expected a number, got a " + v->typeName());
   const double d = std::get<double>(v->data);
   if (!std::isfinite(d)) fail(key, "must be finite (got " + formatNumber(d) + ")");
@@ -100,7 +107,7 @@ bool ConfigTable::boolean(const std::string& key, bool fallback) const {
 
 std::string ConfigTable::string(const std::string& key) const {
   const ConfigValue* v = find(key);
-  if (!v) fail("", "missing required key '" + key + "'");
+  if (!v) missing(key);
   if (!v->isString()) fail(key, "expected a string, got a " + v->typeName());
   return std::get<std::string>(v->data);
 }
@@ -127,7 +134,7 @@ std::string ConfigTable::choice(const std::string& key, const std::string& fallb
 
 std::vector<double> ConfigTable::numbers(const std::string& key) const {
   const ConfigValue* v = find(key);
-  if (!v) fail("", "missing required key '" + key + "'");
+  if (!v) missing(key);
   if (!v->isArray()) fail(key, "expected an array of numbers, got a " + v->typeName());
   std::vector<double> out;
   for (const auto& e : std::get<ConfigValue::Array>(v->data)) {

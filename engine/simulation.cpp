@@ -74,7 +74,8 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.grid);
     GridUpdateParams prm;
     prm.dt = rdt;
-    prm.gravity = settings_.gravity.cast<Real>();
+    const double ramp = settings_.gravityRamp > 0 ? std::min(1.0, (time_ + dt) / settings_.gravityRamp) : 1.0;
+    prm.gravity = (ramp * settings_.gravity).cast<Real>();
     prm.domain = settings_.domain;
     prm.hasTerrain = terrainCache_ != nullptr;
     prm.terrain = settings_.terrainBoundary;

@@ -19,6 +19,9 @@ struct SimulationSettings {
   double cfl = 0.4;                 ///< dt = cfl dx / (c_max + |v|_max)
   double maxDt = std::numeric_limits<double>::infinity();
   Vec3d gravity{0, 0, -9.81};
+  /// Gravity grows linearly from 0 to full over this time (s). Loading a body gradually lets it
+  /// reach its static stress state without the undamped elastic ringing a sudden load causes.
+  double gravityRamp = 0;
   Vec3d origin = Vec3d::Zero();     ///< world coordinates of the local frame's origin
   DomainBox domain;                 ///< local frame
   std::shared_ptr<const TerrainSdf> terrain; ///< optional ground

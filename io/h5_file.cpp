@@ -81,20 +81,31 @@ void writeAttribute(hid_t obj, const std::string& name, double value) {
   H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
 }
 
-void writeAttribute(hid_t obj, const std::string& name, const std::string& value) {
-  writeAttribute(obj, name, std::vector<std::string>{value});
-}
-
-void writeAttribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+namespace {
+Handle stringType() {
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
   H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);
+  return type;
+}
+
+void writeStrings(hid_t obj, const std::string& name, const std::vector<std::string>& values, bool scalar) {
+  Handle type = stringType();
   hsize_t n = values.size();
-  Handle space(values.size() == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
   Handle attr(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   std::vector<const char*> ptrs;
   for (const auto& v : values) ptrs.push_back(v.c_str());
-  H5Awrite(attr, type, ptrs.data());
+  if (H5Awrite(attr, type, ptrs.data()) < 0) throw std::runtime_error("cannot write HDF5 attribute " + name);
+}
+} // namespace
+
+void writeAttribute(hid_t obj, const std::string& name, const std::string& value) {
+  writeStrings(obj, name, {value}, true);
+}
+
+void writeAttribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  writeStrings(obj, name, values, false);
 }
 
 double readDoubleAttribute(hid_t obj, const std::string& name) {
@@ -108,10 +119,9 @@ std::vector<std::string> readStringsAttribute(hid_t obj, const std::string& name
   Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
   Handle space(H5Aget_space(attr), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space);
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type, H5T_VARIABLE);
+  Handle type = stringType();
   std::vector<char*> ptrs(size_t(n), nullptr);
-  H5Aread(attr, type, ptrs.data());
+  if (H5Aread(attr, type, ptrs.data()) < 0) throw std::runtime_error("cannot read HDF5 attribute " + name);
   std::vector<std::string> out;
   for (char* p : ptrs) out.emplace_back(p ? p : "");
   H5Dvlen_reclaim(type, space, H5P_DEFAULT, ptrs.data());

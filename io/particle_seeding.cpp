@@ -40,7 +40,8 @@ Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
 
 size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
-                  MaterialGroup& group) {
+                  MaterialGroup& group, const Mat3d& velocityGradient) {
+  const Mat3 C0 = velocityGradient.cast<Real>();
   const double dx = spec.dx;
   const double volume = dx * dx * dx / spec.particlesPerCell;
   const Real mass = Real(group.density() * volume);
@@ -60,7 +61,7 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
           if (spec.terrain && spec.terrain->distance(x) < 0) continue;
           P.x.push_back(x.cast<Real>());
           P.v.push_back(velocity(x).cast<Real>());
-          P.C.push_back(Mat3::Zero());
+          P.C.push_back(C0);
           P.tau.push_back(Sym3{});
           P.mass.push_back(mass);
         }

@@ -22,9 +22,10 @@ struct SeedSpec {
 Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s);
 
 /// Appends particles for every sample in [lo, hi] (local frame) where `inside` holds.
-/// Each particle gets volume dx^3 / ppc and mass density * volume. Returns the count.
+/// Each particle gets volume dx^3 / ppc and mass density * volume, the velocity of `velocity`
+/// and the APIC matrix C = velocityGradient (so a spinning body starts consistent). Returns the count.
 size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
-                  MaterialGroup& group);
+                  MaterialGroup& group, const Mat3d& velocityGradient = Mat3d::Zero());
 
 } // namespace talus

@@ -13,6 +13,13 @@ namespace talus {
 
 namespace {
 
+/// Velocity gradient of a rigid rotation: v = omega x r  =>  grad v = [omega]x.
+Mat3d skew(const Vec3d& w) {
+  Mat3d m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+
 BoundaryCondition readBoundary(const ConfigTable& t, const std::string& typeKey, const std::string& frictionKey,
                                const std::string& fallback, bool allowOpen) {
   std::vector<std::string> kinds{"sticky", "slip", "friction"};
@@ -39,6 +46,7 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.settings.cfl = sim->inRange("cfl", 0.4, 0, 1, true, false);
   s.settings.gravity = sim->vec3("gravity", Vec3d(0, 0, -9.81));
   s.settings.maxDt = sim->positive("max_dt", std::numeric_limits<double>::infinity());
+  s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
 }
 
 void readDomain(const ConfigTable& root, SceneSetup& s) {
@@ -108,7 +116,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, uint64_t seed, double ji
     const Vec3d c = shape->centre();
     rep.particles = seedRegion(
         lo, hi, [&](const Vec3d& x) { return shape->contains(x); },
-        [&](const Vec3d& x) { return Vec3d(v0 + omega.cross(x - c)); }, spec, *group);
+        [&](const Vec3d& x) { return Vec3d(v0 + omega.cross(x - c)); }, spec, *group, skew(omega));
     if (rep.particles == 0) t.fail("shape", "body holds no particle (smaller than a cell, or inside the terrain)");
     rep.seededVolume = double(rep.particles) * std::pow(spec.dx, 3) / spec.particlesPerCell;
     rep.geometricVolume = shape->volume();

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "engine/svd3.h"
+
+#include <Eigen/Eigenvalues>
 #include "engine/types.h"
 
 #include <algorithm>
@@ -35,28 +37,52 @@ struct HenckyElasticity {
 /// q = sqrt(3/2) 2 mu |dev eps|.
 inline double henckyPressure(const HenckyElasticity& e, const Vec3d& eps) { return -e.bulk() * eps.sum(); }
 
-/// One solid particle update: F_trial -> SVD -> Hencky strain -> model.project (return mapping)
-/// -> F^E and Kirchhoff stress. `Model` provides State, project(eps, state) and stress(eps, state).
+/// One solid particle update: F_trial -> principal Hencky strains -> model.project (return
+/// mapping) -> F^E and Kirchhoff stress. `Model` provides State, project(eps, state) and
+/// stress(eps, state).
+///
+/// Only the left stretch matters for an isotropic model, so the usual path diagonalises
+/// b = F F^T = U S^2 U^T (a closed-form symmetric eigen-solve, several times cheaper than an
+/// SVD) and rebuilds a projected F^E = U exp(eps_new) V^T as U diag(exp(eps_new) / S) U^T F_trial.
+/// Inverted or degenerate F (det <= 0), where b hides the reflection, takes the signed SVD.
 template <class Model>
 inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model::State& state,
                         Mat3& Fout, Sym3& tau) {
-  const Svd3 d = svd3(Ftrial);
-  Vec3d eps;
+  Mat3d U;
+  Vec3d stretch;
+  const double J = Ftrial.determinant();
+  if (J > 1e-12) {
+    Eigen::SelfAdjointEigenSolver<Mat3d> es;
+    es.computeDirect(Ftrial * Ftrial.transpose());
+    U = es.eigenvectors();
+    stretch = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  } else {
+    const Svd3 d = svd3(Ftrial);
+    U = d.U;
+    stretch = d.s; // the last one is <= 0 here: clamped below
+  }
+  Vec3d eps, clamped;
   bool modified = false;
   for (int i = 0; i < 3; ++i) {
-    const double s = std::clamp(d.s[i], kMinStretch, kMaxStretch);
-    modified |= s != d.s[i];
-    eps[i] = std::log(s);
+    clamped[i] = std::clamp(stretch[i], kMinStretch, kMaxStretch);
+    modified |= clamped[i] != stretch[i];
+    eps[i] = std::log(clamped[i]);
   }
   modified |= model.project(eps, state);
   if (modified) {
-    const Vec3d s(std::exp(eps[0]), std::exp(eps[1]), std::exp(eps[2]));
-    Fout = (d.U * s.asDiagonal() * d.V.transpose()).cast<Real>();
+    if (J > 1e-12) {
+      const Vec3d r(std::exp(eps[0]) / stretch[0], std::exp(eps[1]) / stretch[1], std::exp(eps[2]) / stretch[2]);
+      Fout = (U * r.asDiagonal() * U.transpose() * Ftrial).cast<Real>();
+    } else {
+      const Svd3 d = svd3(Ftrial);
+      const Vec3d e(std::exp(eps[0]), std::exp(eps[1]), std::exp(eps[2]));
+      Fout = (d.U * e.asDiagonal() * d.V.transpose()).cast<Real>();
+    }
   } else {
     Fout = Ftrial.cast<Real>();
   }
   const Vec3d t = model.stress(eps, state);
-  tau = Sym3::fromMatrix(d.U * t.asDiagonal() * d.U.transpose());
+  tau = Sym3::fromMatrix(U * t.asDiagonal() * U.transpose());
 }
 
 } // namespace talus

@@ -3,6 +3,7 @@
 #include "io/run_driver.h"
 #include "io/scene.h"
 #include "io/toml_reader.h"
+#include "tools/benchmark.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -70,10 +71,18 @@ int main(int argc, char** argv) {
 
   auto* defaults = app.add_subcommand("default-scene", "Print the embedded default scene");
 
+  BenchOptions bench;
+  auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
+  benchCmd->add_option("--case", bench.cases, "Benchmark cases")->check(CLI::IsMember(benchmarkCaseNames()));
+  benchCmd->add_option("--threads", bench.threads, "Thread counts to run (default: 1 2)");
+  benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
+  benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) return cmdRun(scene, out, threads, sets, quiet);
     if (*check) return cmdCheck(scene, sets);
+    if (*benchCmd) return runBenchmarks(bench);
     if (*defaults) {
       std::cout << defaultSceneText();
       return 0;

@@ -1,0 +1,55 @@
+// Helpers shared by the test files: build a Simulation from scene text, measure particles.
+#pragma once
+
+#include "engine/simulation.h"
+#include "io/scene.h"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace talus::test {
+
+inline std::unique_ptr<Simulation> makeSimulation(const std::string& toml,
+                                                  const std::vector<std::string>& overrides = {}) {
+  SceneSetup s = loadSceneString(toml, "test.toml", overrides);
+  return std::make_unique<Simulation>(s.settings, std::move(s.groups));
+}
+
+/// Mass-weighted centre of all particles (local frame).
+inline Vec3d centreOfMass(const Simulation& sim) {
+  Vec3d c = Vec3d::Zero();
+  double m = 0;
+  for (const auto* g : sim.groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      c += double(g->particles.mass[i]) * g->particles.x[i].cast<double>();
+      m += double(g->particles.mass[i]);
+    }
+  return c / m;
+}
+
+inline Vec3d meanVelocity(const Simulation& sim) {
+  Vec3d v = Vec3d::Zero();
+  double m = 0;
+  for (const auto* g : sim.groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      v += double(g->particles.mass[i]) * g->particles.v[i].cast<double>();
+      m += double(g->particles.mass[i]);
+    }
+  return v / m;
+}
+
+/// ../shared next to the project, or empty when absent (tests then skip).
+inline std::string sharedDir() {
+  const std::string d = TALUS_SHARED_DIR;
+  return std::filesystem::is_directory(d) ? d : std::string();
+}
+
+inline std::string tempDir(const std::string& name) {
+  auto p = std::filesystem::temp_directory_path() / ("talus_test_" + name);
+  std::filesystem::remove_all(p);
+  std::filesystem::create_directories(p);
+  return p.string();
+}
+
+} // namespace talus::test

@@ -1,0 +1,107 @@
+#include "tools/benchmark.h"
+
+#include "io/scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <tbb/global_control.h>
+
+namespace talus {
+
+namespace {
+
+struct Case {
+  std::string description;
+  std::string toml; // %DX% is replaced by the grid spacing for the requested scale
+  double dx;
+};
+
+// An elastic slab (50 x 25 x 25 cells, 8 particles per cell: 250k particles) dropped onto a
+// slip floor, so stresses and contacts are realistic rather than a rigid translation.
+const char* kElastic = R"(
+[simulation]
+dx = %DX%
+particles_per_cell = 8
+end_time = 10
+[domain]
+min = [0, 0, 0]
+max = [1.4, 0.9, 0.8]
+walls = "slip"
+[[materials]]
+name = "jelly"
+model = "elastic"
+density = 1000
+youngs_modulus = 2e5
+poisson_ratio = 0.3
+[[bodies]]
+material = "jelly"
+shape = "box"
+min = [0.2, 0.2, 0.06]
+max = [1.2, 0.7, 0.56]
+velocity = [0.5, 0, -1]
+)";
+
+const std::map<std::string, Case>& cases() {
+  static const std::map<std::string, Case> c{
+      {"elastic", {"elastic slab falling on a slip floor", kElastic, 0.02}},
+  };
+  return c;
+}
+
+std::string substitute(std::string s, const std::string& key, const std::string& value) {
+  for (size_t p; (p = s.find(key)) != std::string::npos;) s.replace(p, key.size(), value);
+  return s;
+}
+
+} // namespace
+
+std::vector<std::string> benchmarkCaseNames() {
+  std::vector<std::string> n;
+  for (const auto& [k, v] : cases()) n.push_back(k);
+  return n;
+}
+
+int runBenchmarks(const BenchOptions& opt) {
+  std::printf("%-10s %7s %9s %7s %12s %12s %7s %7s %7s %7s %7s %8s %8s\n", "case", "threads", "particles", "steps",
+              "p-steps/s", "per core", "bin%", "p2g%", "grid%", "g2p%", "other%", "B/part", "KB/block");
+  for (const std::string& name : opt.cases) {
+    auto it = cases().find(name);
+    if (it == cases().end()) throw std::runtime_error("unknown benchmark case '" + name + "'");
+    const Case& c = it->second;
+    const double dx = c.dx / std::cbrt(opt.scale);
+    char dxs[32];
+    std::snprintf(dxs, sizeof dxs, "%.6g", dx);
+    double oneThread = 0;
+    for (int threads : opt.threads) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+      SceneSetup s = loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
+      Simulation sim(s.settings, std::move(s.groups));
+      for (int i = 0; i < opt.warmup; ++i) sim.step();
+      const PhaseTimes before = sim.phaseTimes();
+      const uint64_t ps0 = sim.particleSteps();
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int i = 0; i < opt.steps; ++i) sim.step();
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const PhaseTimes& after = sim.phaseTimes();
+      const double pss = double(sim.particleSteps() - ps0) / wall;
+      if (threads == 1) oneThread = pss;
+      auto pct = [&](double a, double b) { return 100.0 * (a - b) / wall; };
+      const double other = wall - (after.total() - before.total()) + (after.terrain - before.terrain) +
+                           (after.cull - before.cull);
+      std::printf("%-10s %7d %9zu %7d %12.3e %12.3e %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f\n", name.c_str(),
+                  threads, sim.particleCount(), opt.steps, pss, pss / threads, pct(after.bin, before.bin),
+                  pct(after.p2g, before.p2g), pct(after.grid, before.grid), pct(after.g2p, before.g2p),
+                  100.0 * other / wall, double(sim.particleBytes()) / double(sim.particleCount()),
+                  double(sim.gridBytes()) / 1024.0 / double(std::max<size_t>(1, sim.grid().blockCount())));
+      if (threads > 1 && oneThread > 0)
+        std::printf("%-10s %7s parallel efficiency at %d threads: %.0f%%\n", "", "", threads,
+                    100.0 * pss / (threads * oneThread));
+    }
+  }
+  return 0;
+}
+
+} // namespace talus
