@@ -3,6 +3,7 @@
 
 #include "engine/config_table.h"
 #include "engine/simulation.h"
+#include "io/raster_grid.h"
 
 #include <memory>
 #include <string>
@@ -33,6 +34,8 @@ struct SceneSetup {
   int particlesPerCell = 8;
   OutputSettings output;
   std::vector<BodyReport> bodies;
+  /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS).
+  std::shared_ptr<const DemRaster> dem;
 };
 
 /// Reads every section, creates and seeds the material groups, and rejects unknown keys.

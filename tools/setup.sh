@@ -13,6 +13,7 @@ packages=(
   cmake ninja-build g++ pkg-config ccache
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
   libhdf5-dev libgtest-dev libtomlplusplus-dev libcli11-dev
+  libgdal-dev gdal-bin libcairo2-dev
 )
 
 missing=()
