@@ -47,6 +47,7 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.settings.gravity = sim->vec3("gravity", Vec3d(0, 0, -9.81));
   s.settings.maxDt = sim->positive("max_dt", std::numeric_limits<double>::infinity());
   s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
+  s.settings.damping = sim->positive("damping", 0, true);
 }
 
 void readDomain(const ConfigTable& root, SceneSetup& s) {
