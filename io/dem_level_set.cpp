@@ -1,12 +1,12 @@
 #include "io/dem_level_set.h"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/SignedFloodFill.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <tbb/blocked_range2d.h>
@@ -70,31 +70,49 @@ struct Surface {
   }
 };
 
-/// Signed distance from (x, y, z) to the bilinear surface. The point straight below/above is a
-/// surface point; from there the foot point on the local tangent plane is iterated (a plane's
-/// is exact in one step). Every iterate is a true surface point, so the result is the distance
-/// to the nearest surface point visited: never below the true distance, and equal to it when
-/// the projection converges (smooth terrain, |phi| below the curvature radius). Points whose
-/// tangent-plane distance exceeds `far` are only estimated (they are outside the band anyway).
-inline double surfaceDistance(const Surface& s, double x, double y, double z, double tol, double far,
-                              bool closestPoint) {
+/// Signed distance from (x, y, z) to the bilinear surface.
+///  - The two voxels of a column that bracket the surface (|z - h| < dx) hold the slope-corrected
+///    vertical difference (z - h) / sqrt(1 + |grad h|^2) with the smooth (central-difference)
+///    gradient: the true distance to second order, and it puts the zero crossing of every voxel
+///    column exactly at the surface height. True distances cannot: across a crease of the
+///    bilinear surface the distance has a kink, and interpolating it linearly between the two
+///    voxels moves the zero by up to ~0.2 dx on a rough 5 m DEM.
+///  - Farther voxels hold the closest-point distance: from the point straight below/above, the
+///    foot point on the local tangent plane is iterated (a plane's is exact in one step). Every
+///    iterate is a true surface point, so the result is the distance to the nearest surface
+///    point visited: never below the true distance, and equal to it when the projection
+///    converges (smooth terrain, |phi| below the curvature radius). Points whose tangent-plane
+///    distance exceeds `far` are only estimated (they are outside the band anyway).
+inline double surfaceDistance(const Surface& s, const HeightField& f, double x, double y, double z, double dx,
+                              double far, bool closestPoint) {
   double gx, gy;
   const double h = s.eval(x, y, gx, gy);
+  if (!closestPoint) return (z - h) / std::sqrt(1 + gx * gx + gy * gy);
+  if (std::fabs(z - h) < dx) {
+    double sx, sy;
+    f.slopeGradient(x, y, sx, sy);
+    return (z - h) / std::sqrt(1 + sx * sx + sy * sy);
+  }
   const double plane = (z - h) / std::sqrt(1 + gx * gx + gy * gy);
-  if (!closestPoint || std::fabs(plane) > far) return plane;
-  const double sign = z >= h ? 1.0 : -1.0;
+  if (std::fabs(plane) > far) return plane;
+  const double sign = z >= h ? 1.0 : -1.0, tol = 1e-2 * dx;
   double best2 = (z - h) * (z - h);
   double qx = x, qy = y, hq = h;
   for (int it = 0; it < 8; ++it) {
     const double sq = (z - hq - gx * (x - qx) - gy * (y - qy)) / (1 + gx * gx + gy * gy);
     const double nx = x + sq * gx, ny = y + sq * gy;
-    if ((nx - qx) * (nx - qx) + (ny - qy) * (ny - qy) < tol * tol) break; // converged: q is the foot
+    if ((nx - qx) * (nx - qx) + (ny - qy) * (ny - qy) < tol * tol) { // converged: q is the foot
+      best2 = std::min(best2, sq * sq * (1 + gx * gx + gy * gy));      // distance to its tangent plane
+      break;
+    }
     qx = nx, qy = ny;
     hq = s.eval(qx, qy, gx, gy);
     best2 = std::min(best2, (x - qx) * (x - qx) + (y - qy) * (y - qy) + (z - hq) * (z - hq));
   }
   return sign * std::sqrt(best2);
 }
+
+inline int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 } // namespace
 
@@ -127,9 +145,14 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
   const Surface fast(surface);
   std::mutex mutex;
   std::vector<LeafT*> leaves;
+  struct Floor {
+    int L, M, k; ///< leaf column and the first voxel z index of its lowest leaf with active voxels
+  };
+  std::vector<Floor> floors;
   const int L0 = i0 >> 3, L1 = i1 >> 3, M0 = j0 >> 3, M1 = j1 >> 3; // leaf columns (floor division)
   tbb::parallel_for(tbb::blocked_range2d<int>(L0, L1 + 1, M0, M1 + 1), [&](const tbb::blocked_range2d<int>& r) {
     std::vector<LeafT*> local;
+    std::vector<Floor> localFloors;
     int klo[64], khi[64];
     double hc[64];
     for (int L = r.rows().begin(); L != r.rows().end(); ++L)
@@ -164,7 +187,7 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
                   if (klo[n] <= khi[n] && z < hc[n]) leaf->setValueOff(off, -bg);
                   continue;
                 }
-                const double phi = surfaceDistance(fast, x, y, z, 1e-2 * dx, 2 * bg, o.closestPoint);
+                const double phi = surfaceDistance(fast, surface, x, y, z, dx, 2 * bg, o.closestPoint);
                 if (std::fabs(phi) < bg) {
                   leaf->setValueOn(off, float(phi));
                   any = true;
@@ -173,16 +196,48 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
                 }
               }
             }
-          if (any) local.push_back(leaf.release());
+          if (any) {
+            if (localFloors.empty() || localFloors.back().L != L || localFloors.back().M != M)
+              localFloors.push_back({L, M, K * 8});
+            local.push_back(leaf.release());
+          }
         }
       }
     std::lock_guard<std::mutex> lock(mutex);
     leaves.insert(leaves.end(), local.begin(), local.end());
+    floors.insert(floors.end(), localFloors.begin(), localFloors.end());
   });
 
   FloatGrid::Ptr grid = FloatGrid::create(bg);
-  for (LeafT* leaf : leaves) grid->tree().addLeaf(leaf); // the tree takes ownership
-  tools::signedFloodFill(grid->tree());
+  FloatTree& tree = grid->tree();
+  for (LeafT* leaf : leaves) tree.addLeaf(leaf); // the tree takes ownership
+  // Below the band is ground: inactive tiles of -bg (OpenVDB's signedFloodFill guesses inside
+  // from scan order, which fails where a height field leaves whole columns of nodes empty).
+  // Each leaf column gets 8^3 tiles down to its node's floor, each 128^2 footprint whole
+  // 128^3 tiles below that, down to zmin. Above the band the background (+bg) is outside.
+  {
+    float hlo, hhi;
+    surface.range(hlo, hhi);
+    const double zmin = std::isfinite(o.zmin) ? std::min(o.zmin, double(hlo)) : hlo - 128 * dx;
+    const int kFloor = floorDiv(int(std::floor((zmin - o.origin.z()) / dx)), 128) * 128;
+    std::map<std::pair<int, int>, int> nodeFloor; // 128^2 footprint -> its lowest leaf, rounded down
+    for (const Floor& f : floors) {
+      auto key = std::make_pair(floorDiv(f.L, 16), floorDiv(f.M, 16));
+      const int z1 = floorDiv(f.k, 128) * 128;
+      auto it = nodeFloor.find(key);
+      if (it == nodeFloor.end()) nodeFloor.emplace(key, z1);
+      else it->second = std::min(it->second, z1);
+    }
+    for (const Floor& f : floors) {
+      const int z1 = nodeFloor[std::make_pair(floorDiv(f.L, 16), floorDiv(f.M, 16))];
+      if (f.k > z1) tree.fill(CoordBBox(Coord(f.L * 8, f.M * 8, z1), Coord(f.L * 8 + 7, f.M * 8 + 7, f.k - 1)), -bg, false);
+    }
+    for (const auto& [key, z1] : nodeFloor)
+      if (z1 > kFloor)
+        tree.fill(CoordBBox(Coord(key.first * 128, key.second * 128, kFloor),
+                            Coord(key.first * 128 + 127, key.second * 128 + 127, z1 - 1)),
+                  -bg, false);
+  }
   stats.leaves = leaves.size();
   stats.activeVoxels = grid->activeVoxelCount();
   math::Transform::Ptr xf = math::Transform::createLinearTransform(dx);
@@ -197,7 +252,7 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
   grid->insertMeta("source", StringMetadata(o.sourcePath));
   grid->insertMeta("smooth_radius", DoubleMetadata(o.smoothRadius));
   grid->insertMeta("distance_method",
-                   StringMetadata(o.closestPoint ? "closest point on the bilinear DEM surface"
+                   StringMetadata(o.closestPoint ? "closest point on the bilinear DEM surface (vertical next to it)"
                                                  : "slope-corrected vertical difference"));
   grid->insertMeta("dem_grid", StringMetadata(std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells of " +
                                               std::to_string(g.cellSize) + " m, west " + std::to_string(g.originX) +

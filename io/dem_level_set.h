@@ -8,6 +8,7 @@
 #include "engine/types.h"
 #include "io/dem_raster.h"
 
+#include <limits>
 #include <string>
 
 namespace talus {
@@ -19,9 +20,15 @@ struct LevelSetBuildOptions {
   /// Columns whose centres lie in [xmin, xmax] x [ymin, ymax] (world) are built; beyond the
   /// raster the surface continues at the height of its outermost cell centres.
   double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+  /// The level set is inside (negative) below the band down to at least this world z; NaN:
+  /// 128 voxels below the lowest point of the surface.
+  double zmin = std::numeric_limits<double>::quiet_NaN();
   /// true: distance to the closest point of the bilinear surface (a projection iterated from the
-  /// vertical foot point; exact for planes and smooth terrain). false: the slope-corrected
-  /// vertical difference (z - h) / sqrt(1 + |grad h|^2) only, exact for planes alone.
+  /// vertical foot point; exact for planes and smooth terrain), except for the two voxels of
+  /// each column that bracket the surface, which hold the slope-corrected vertical difference so
+  /// the zero crossing of every column is exactly at the surface height. false: the
+  /// slope-corrected vertical difference (z - h) / sqrt(1 + |grad h|^2) everywhere, exact for
+  /// planes alone (kept for comparison).
   bool closestPoint = true;
   // Metadata written into the grid.
   std::string sourcePath;

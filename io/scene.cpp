@@ -120,6 +120,7 @@ void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const s
   const double margin = 2 * kBlockDim * o.dx; // active blocks reach past the walls
   const Vec3d lo = s.settings.domain.min + s.settings.origin, hi = s.settings.domain.max + s.settings.origin;
   o.xmin = lo.x() - margin, o.ymin = lo.y() - margin, o.xmax = hi.x() + margin, o.ymax = hi.y() + margin;
+  o.zmin = lo.z() - margin;
   o.sourcePath = dem.raw->sourcePath;
   o.smoothRadius = dem.smoothRadius;
   CachedLevelSet ls;

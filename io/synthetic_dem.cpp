@@ -97,9 +97,11 @@ const std::vector<Kind>& kinds() {
                    return [p, Lx, Ly](double X, double Y) {
                      const double vs = std::tan(p.at("valley_slope") * kDeg);
                      const double damY = p.at("dam_y");
-                     const double g = 0.5 * (1 + std::tanh((Y - (damY - 40)) / 30)); // 0 basin, 1 gorge
-                     const double halfw = 0.5 * (p.at("basin_width") * (1 - g) + p.at("gorge_width") * g);
-                     const double floor = (Ly - Y) * vs - p.at("gorge_depth") * g;
+                     // The valley narrows to the gorge before the dam; the gorge floor drops after it.
+                     const double narrow = 0.5 * (1 + std::tanh((Y - (damY - 80)) / 30));
+                     const double drop = 0.5 * (1 + std::tanh((Y - (damY + 30)) / 30));
+                     const double halfw = 0.5 * (p.at("basin_width") * (1 - narrow) + p.at("gorge_width") * narrow);
+                     const double floor = (Ly - Y) * vs - p.at("gorge_depth") * drop;
                      const double xc = 0.5 * Lx, d = std::fabs(X - xc) - halfw;
                      const double ang = (X < xc ? p.at("west_angle") : p.at("east_angle")) * kDeg;
                      const double H = p.at("flank_height");

@@ -212,7 +212,7 @@ void TerrainBody::raise(const HeightField& bed, DemRaster& ground) const {
 
 std::shared_ptr<const TerrainSdf> TerrainBody::fixedSolid() const {
   if (!solid_) return nullptr;
-  const BodyShape* s = solid_.get();
+  std::shared_ptr<const BodyShape> s = solid_;
   return std::make_shared<FunctionTerrain>([s](const Vec3d& x) { return s->distance(x); },
                                            "fixed " + t_->string("solid") + " of " + t_->keyPath(""));
 }

@@ -81,7 +81,7 @@ private:
   bool slopeNormal_ = true;
   double maxSlope_ = 90, minElevation_ = -INFINITY, maxElevation_ = INFINITY;
   double level_ = 0;
-  std::unique_ptr<BodyShape> solid_;
+  std::shared_ptr<const BodyShape> solid_; ///< shared with the terrain, which outlives the body
   Vec3d velocity_ = Vec3d::Zero();
 };
 

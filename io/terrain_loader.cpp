@@ -101,7 +101,8 @@ struct Hash {
   template <class T> void value(const T& v) { bytes(&v, sizeof v); }
   void text(const std::string& s) { value(s.size()), bytes(s.data(), s.size()); }
 };
-constexpr const char* kBuilderVersion = "talus-dem-level-set-1";
+// Bump when the builder's output changes, so stale cache files are not reused.
+constexpr const char* kBuilderVersion = "talus-dem-level-set-3";
 } // namespace
 
 CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOptions& o) {
@@ -113,7 +114,7 @@ CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOpt
   h.value(g.nx), h.value(g.ny), h.value(g.originX), h.value(g.originY), h.value(g.cellSize);
   h.text(g.crsWkt);
   h.value(o.dx), h.value(o.origin.x()), h.value(o.origin.y()), h.value(o.origin.z()), h.value(o.band);
-  h.value(o.xmin), h.value(o.ymin), h.value(o.xmax), h.value(o.ymax), h.value(o.closestPoint);
+  h.value(o.xmin), h.value(o.ymin), h.value(o.xmax), h.value(o.ymax), h.value(o.zmin), h.value(o.closestPoint);
   h.text(o.sourcePath), h.value(o.smoothRadius);
   char name[64];
   std::snprintf(name, sizeof name, "terrain_%016llx.vdb", static_cast<unsigned long long>(h.h));
