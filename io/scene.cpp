@@ -131,8 +131,8 @@ void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const s
   }
   char buf[1024];
   if (ls.reused)
-    std::snprintf(buf, sizeof buf, "terrain: %s; level set (dx %g m) reused from %s", dem.description.c_str(), o.dx,
-                  ls.path.c_str());
+    std::snprintf(buf, sizeof buf, "terrain: %s; level set (dx %g m) reused from %s (read in %.2f s)",
+                  dem.description.c_str(), o.dx, ls.path.c_str(), ls.loadSeconds);
   else
     std::snprintf(buf, sizeof buf, "terrain: %s; level set (dx %g m, %zu active voxels) built in %.2f s, cached in %s",
                   dem.description.c_str(), o.dx, ls.stats.activeVoxels, ls.stats.buildSeconds + ls.stats.writeSeconds,

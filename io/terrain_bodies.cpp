@@ -45,7 +45,11 @@ TerrainBody::TerrainBody(const ConfigTable& t, const std::string& kind, const De
     }
     if (!sameCrs(region_->crsWkt(), demCrs))
       t.fail("polygon", file + ": its CRS, " + crsName(region_->crsWkt()) + ", differs from the DEM's, " +
-                            crsName(demCrs) + "; reproject it (ogr2ogr -t_srs)");
+                            crsName(demCrs) + "; reproject it (ogr2ogr -t_srs)" +
+                            (file.find("json") != std::string::npos ? " or, if its coordinates are in the DEM's CRS, "
+                                                                      "give it a \"crs\" member (GeoJSON without "
+                                                                      "one is WGS 84)"
+                                                                    : ""));
   } else if (t.has("bounds")) {
     const auto b = t.numbers("bounds");
     if (b.size() != 4 || !(b[2] > b[0]) || !(b[3] > b[1]))
