@@ -196,6 +196,10 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
                 }
               }
             }
+          // A leaf without active voxels lies wholly below the leaf column's band (the tiles
+          // filled below are right for it) or above it (the background is): neighbouring voxel
+          // columns' surfaces differ by |grad h| dx, less than the band's vertical thickness
+          // 2 band dx sqrt(1 + |grad h|^2), so the bands of a leaf column leave no gap.
           if (any) {
             if (localFloors.empty() || localFloors.back().L != L || localFloors.back().M != M)
               localFloors.push_back({L, M, K * 8});

@@ -6,6 +6,7 @@
 #include "terrain_test_support.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>
@@ -149,22 +150,28 @@ TEST(TerrainLevelSet, CurvedTerrainMatchesBruteForceDistance) {
 }
 
 TEST(TerrainLevelSet, SignIsRightFarBelowAndAboveTheBand) {
+  // Rolling terrain and a 75-degree cliff, whose leaves can lie wholly beyond the band.
   const std::string dir = test::tempDir("ls_sign");
   const double x0 = 2600000, y0 = 1200000;
-  auto h = [&](double x, double y) { return 1500 + 0.8 * (x - x0) + 30 * std::sin((y - y0) / 40); };
-  const DemRaster dem = test::makeDem(120, 90, 2, x0, y0, h);
-  const HeightField f(dem);
-  const Vec3d origin(x0, y0, 1400);
-  buildDemLevelSet(f, optionsFor(f, 2, origin), dir + "/s.vdb");
-  const LevelSetTerrain ls(dir + "/s.vdb", "", origin);
-  for (int i = 2; i < 118; i += 5)
-    for (int j = 2; j < 88; j += 5) {
-      const double x = x0 + i * 2, y = y0 + j * 2, z = h(x, y);
-      for (double d : {10.0, 40.0, 150.0}) {
-        ASSERT_LT(ls.distance(Vec3d(x, y, z - d) - origin), 0) << i << " " << j << " " << d;
-        ASSERT_GT(ls.distance(Vec3d(x, y, z + d) - origin), 0) << i << " " << j << " " << d;
+  auto rolling = [&](double x, double y) { return 1500 + 0.8 * (x - x0) + 30 * std::sin((y - y0) / 40); };
+  auto cliff = [&](double x, double y) {
+    return 1500 + 3.73 * std::clamp(x - x0 - 80, 0.0, 80.0) + 10 * std::sin((y - y0) / 25);
+  };
+  for (const auto& h : {std::function<double(double, double)>(rolling), std::function<double(double, double)>(cliff)}) {
+    const DemRaster dem = test::makeDem(120, 90, 2, x0, y0, h);
+    const HeightField f(dem);
+    const Vec3d origin(x0, y0, 1400);
+    buildDemLevelSet(f, optionsFor(f, 2, origin), dir + "/s.vdb");
+    const LevelSetTerrain ls(dir + "/s.vdb", "", origin);
+    for (int i = 2; i < 118; i += 3)
+      for (int j = 2; j < 88; j += 3) {
+        const double x = x0 + i * 2 + 0.3, y = y0 + j * 2 + 0.7, z = f.height(x, y);
+        for (double d : {10.0, 25.0, 40.0, 150.0}) {
+          ASSERT_LT(ls.distance(Vec3d(x, y, z - d) - origin), 0) << i << " " << j << " " << d;
+          ASSERT_GT(ls.distance(Vec3d(x, y, z + d) - origin), 0) << i << " " << j << " " << d;
+        }
       }
-    }
+  }
 }
 
 TEST(TerrainLevelSet, AvaWogZeroLevelPassesThroughTheCellCentreElevations) {
