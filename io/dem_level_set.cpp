@@ -187,7 +187,7 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
                   if (klo[n] <= khi[n] && z < hc[n]) leaf->setValueOff(off, -bg);
                   continue;
                 }
-                const double phi = surfaceDistance(fast, surface, x, y, z, dx, 2 * bg, o.closestPoint);
+                const double phi = surfaceDistance(fast, surface, x, y, z, dx, 1.25 * bg, o.closestPoint);
                 if (std::fabs(phi) < bg) {
                   leaf->setValueOn(off, float(phi));
                   any = true;

@@ -175,6 +175,7 @@ double TerrainBody::thicknessAt(const HeightField& bed, int feature, double x, d
 
 bool TerrainBody::interval(const HeightField& bed, double x, double y, double& zb, double& zt) const {
   zb = zt = 0;
+  if (!region_) return false; // a fixed solid: not a column of the terrain
   const int f = region_->locate(x, y);
   if (f < 0) return false;
   zb = zt = bed.height(x, y);

@@ -102,7 +102,7 @@ struct Hash {
   void text(const std::string& s) { value(s.size()), bytes(s.data(), s.size()); }
 };
 // Bump when the builder's output changes, so stale cache files are not reused.
-constexpr const char* kBuilderVersion = "talus-dem-level-set-3";
+constexpr const char* kBuilderVersion = "talus-dem-level-set-4";
 } // namespace
 
 CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOptions& o) {
