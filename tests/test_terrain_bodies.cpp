@@ -164,8 +164,11 @@ TEST(TerrainBodies, RelWogReleaseSeedsAreaTimesThickness) {
   test::useTestTerrainCache();
   const std::string in = test::sharedDir() + "/data/avaframe_avaWog/Inputs";
   const std::string shp = in + "/REL/relWog.shp";
+  // dx 1.5 m puts ~1.3 particle layers in the 1 m slab: each column's count is off by up to a
+  // layer, but the slope shifts the lattice from column to column, so over ~60000 columns the
+  // volume is unbiased (measured -0.3 %).
   auto wog = [&](const std::string& body) {
-    return "[simulation]\ndx = 1\nend_time = 1\n[terrain]\ndem = \"" + in +
+    return "[simulation]\ndx = 1.5\nend_time = 1\n[terrain]\ndem = \"" + in +
            "/avaWog.asc\"\nfill_nodata = true\ncrs = \"EPSG:31287\"\nboundary = \"slip\"\n"
            "[domain]\nmin = [168800, 362290, 1500]\nmax = [169430, 362780, 2600]\n"
            "[[materials]]\nname = \"snow\"\nmodel = \"elastic\"\ndensity = 300\nyoungs_modulus = 1e6\n"
