@@ -40,6 +40,10 @@ struct DruckerPragerModel {
     float plasticStrain = 0; ///< accumulated deviatoric plastic Hencky strain e
   };
 
+  DruckerPragerModel() = default;
+  DruckerPragerModel(const HenckyElasticity& e, const DruckerPragerParams& p)
+      : elastic(e), params(p), gammaResidual_(gammaOf(p.residualFrictionAngle, p.cone)) {}
+
   HenckyElasticity elastic;
   DruckerPragerParams params;
 
@@ -79,6 +83,11 @@ struct DruckerPragerModel {
   static std::vector<std::string> stateScalarNames() { return {"plastic_strain"}; }
   static float stateScalar(const State& s, size_t) { return s.plasticStrain; }
 
+  /// Constant strength (no softening): gamma and c need no trigonometry per particle.
+  bool softens() const {
+    return params.softening > 0 && (params.cohesion > 0 || params.frictionAngle != params.residualFrictionAngle);
+  }
+
   /// Return mapping; true when eps was changed (plastic step).
   bool project(Vec3d& eps, State& s) const {
     const double K = elastic.bulk(), k = std::sqrt(1.5) * 2 * elastic.mu;
@@ -86,6 +95,18 @@ struct DruckerPragerModel {
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);
     const double a = dev.norm(); // |dev eps|, q = k a
     const double e0 = s.plasticStrain;
+    if (!softens()) {
+      if (k * a - gammaResidual_ * (p + params.cohesion) <= 0) return false;
+      if (p + params.cohesion <= 0) {
+        eps = Vec3d::Constant(params.cohesion / (3 * K));
+        s.plasticStrain = float(e0 + a);
+        return true;
+      }
+      const double aNew = gammaResidual_ * (p + params.cohesion) / k;
+      eps = Vec3d::Constant(tr / 3) + (aNew / a) * dev;
+      s.plasticStrain = float(e0 + a - aNew);
+      return true;
+    }
     if (k * a - gamma(e0) * (p + cohesion(e0)) <= 0) return false;
 
     // Beyond the tip even once all deviatoric strain is removed: go to the tip.
@@ -121,6 +142,9 @@ struct DruckerPragerModel {
     s.plasticStrain = float(e0 + d);
     return true;
   }
+
+private:
+  double gammaResidual_ = 0; ///< gamma of the residual friction angle (the constant-strength fast path)
 };
 
 } // namespace talus

@@ -3,8 +3,7 @@
 #pragma once
 
 #include "engine/svd3.h"
-
-#include <Eigen/Eigenvalues>
+#include "engine/sym_eigen3.h"
 #include "engine/types.h"
 
 #include <algorithm>
@@ -42,8 +41,7 @@ inline double henckyPressure(const HenckyElasticity& e, const Vec3d& eps) { retu
 /// stress(eps, state).
 ///
 /// Only the left stretch matters for an isotropic model, so the usual path diagonalises
-/// b = F F^T = U S^2 U^T (a closed-form symmetric eigen-solve, several times cheaper than an
-/// SVD) and rebuilds a projected F^E = U exp(eps_new) V^T as U diag(exp(eps_new) / S) U^T F_trial.
+/// b = F F^T = U S^2 U^T (a Jacobi symmetric eigen-solve, several times cheaper than an SVD) and rebuilds a projected F^E = U exp(eps_new) V^T as U diag(exp(eps_new) / S) U^T F_trial.
 /// Inverted or degenerate F (det <= 0), where b hides the reflection, takes the signed SVD.
 template <class Model>
 inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model::State& state,
@@ -52,10 +50,9 @@ inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model:
   Vec3d stretch;
   const double J = Ftrial.determinant();
   if (J > 1e-12) {
-    Eigen::SelfAdjointEigenSolver<Mat3d> es;
-    es.computeDirect(Ftrial * Ftrial.transpose());
-    U = es.eigenvectors();
-    stretch = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    Vec3d lambda;
+    symmetricEigen3(Ftrial * Ftrial.transpose(), lambda, U);
+    stretch = lambda.cwiseMax(0.0).cwiseSqrt();
   } else {
     const Svd3 d = svd3(Ftrial);
     U = d.U;

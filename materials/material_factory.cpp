@@ -93,17 +93,17 @@ std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int ind
     return std::make_unique<SolidGroup<ElasticModel>>(name, index, density, m);
   }
   if (model == "drucker_prager") {
-    DruckerPragerModel m;
-    m.elastic = readElasticity(r);
-    m.params.frictionAngle = r.angle("friction_angle");
-    m.params.residualFrictionAngle = r.angle("residual_friction_angle", m.params.frictionAngle * 180 / M_PI);
-    m.params.cohesion = r.nonNegative("cohesion", 0.0);
-    m.params.softening = r.nonNegative("softening", 0.0);
+    const HenckyElasticity e = readElasticity(r);
+    DruckerPragerParams p;
+    p.frictionAngle = r.angle("friction_angle");
+    p.residualFrictionAngle = r.angle("residual_friction_angle", p.frictionAngle * 180 / M_PI);
+    p.cohesion = r.nonNegative("cohesion", 0.0);
+    p.softening = r.nonNegative("softening", 0.0);
     const std::string cone = t.choice("cone", "compression", {"compression", "plane_strain", "extension"});
-    m.params.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
-                    : cone == "extension"  ? DruckerPragerCone::Extension
-                                           : DruckerPragerCone::Compression;
-    return std::make_unique<SolidGroup<DruckerPragerModel>>(name, index, density, m);
+    p.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
+             : cone == "extension"  ? DruckerPragerCone::Extension
+                                    : DruckerPragerCone::Compression;
+    return std::make_unique<SolidGroup<DruckerPragerModel>>(name, index, density, DruckerPragerModel(e, p));
   }
   if (model == "cam_clay") {
     CamClayModel m;

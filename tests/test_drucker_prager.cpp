@@ -7,14 +7,15 @@
 using namespace talus;
 
 namespace {
-DruckerPragerModel makeModel(double phiIni, double phiRes, double c, double chi) {
-  DruckerPragerModel m;
-  m.elastic = HenckyElasticity::fromYoung(30e6, 0.25);
-  m.params.frictionAngle = phiIni * M_PI / 180;
-  m.params.residualFrictionAngle = phiRes * M_PI / 180;
-  m.params.cohesion = c;
-  m.params.softening = chi;
-  return m;
+DruckerPragerModel makeModel(double phiIni, double phiRes, double c, double chi,
+                             DruckerPragerCone cone = DruckerPragerCone::Compression) {
+  DruckerPragerParams p;
+  p.frictionAngle = phiIni * M_PI / 180;
+  p.residualFrictionAngle = phiRes * M_PI / 180;
+  p.cohesion = c;
+  p.softening = chi;
+  p.cone = cone;
+  return DruckerPragerModel(HenckyElasticity::fromYoung(30e6, 0.25), p);
 }
 
 double stressScale(const DruckerPragerModel& m, const Vec3d& eps) {
@@ -27,10 +28,13 @@ double stressScale(const DruckerPragerModel& m, const Vec3d& eps) {
 TEST(DruckerPrager, ReturnLandsOnTheSurfaceKeepsAdmissibleStatesAndIsIdempotent) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> strain(-0.05, 0.05), unit(0, 1);
-  DruckerPragerModel models[] = {makeModel(30, 30, 0, 0), makeModel(42, 36, 2e6, 1e10), makeModel(50, 30, 1e5, 20),
-                                 makeModel(40, 25, 1e6, 3), makeModel(35, 20, 5e5, 10)};
-  models[3].params.cone = DruckerPragerCone::PlaneStrain;
-  models[4].params.cone = DruckerPragerCone::Extension;
+  // Constant strength (fast path) and softening (consistent Newton return), all three cones.
+  const DruckerPragerModel models[] = {makeModel(30, 30, 0, 0),
+                                       makeModel(42, 36, 2e6, 1e10),
+                                       makeModel(50, 30, 1e5, 20),
+                                       makeModel(40, 25, 1e6, 3, DruckerPragerCone::PlaneStrain),
+                                       makeModel(35, 20, 5e5, 10, DruckerPragerCone::Extension),
+                                       makeModel(33, 33, 2e4, 0, DruckerPragerCone::PlaneStrain)};
   int plastic = 0, elastic = 0, tip = 0;
   for (const auto& m : models)
     for (int t = 0; t < 20000; ++t) {

@@ -44,9 +44,94 @@ max = [1.2, 0.7, 0.56]
 velocity = [0.5, 0, -1]
 )";
 
+// A 3-D granular column collapsing on a rough floor (cohesionless Drucker-Prager, phi 30):
+// 50 x 25 x 25 cells x 8 = 250k particles, most of them yielding every step.
+const char* kGranular = R"(
+[simulation]
+dx = %DX%
+particles_per_cell = 8
+end_time = 10
+[domain]
+min = [0, 0, 0]
+max = [3.0, 0.9, 0.8]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0.02], normal = [0, 0, 1] }
+boundary = "friction"
+friction = 0.5
+[[materials]]
+name = "sand"
+model = "drucker_prager"
+density = 1600
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+friction_angle = 30
+[[bodies]]
+material = "sand"
+shape = "box"
+min = [0.02, 0.2, 0.02]
+max = [1.02, 0.7, 0.52]
+velocity = [1, 0, 0]
+)";
+
+// A Table 1 snow block (Modified Cam Clay) hit by a rock block (Drucker-Prager): compaction.
+const char* kSnow = R"(
+[simulation]
+dx = %DX%
+particles_per_cell = 8
+end_time = 10
+[domain]
+min = [0, 0, 0]
+max = [1.4, 0.9, 1.2]
+walls = "slip"
+[[materials]]
+name = "snow"
+preset = "snow"
+[[materials]]
+name = "rock"
+preset = "rock"
+[[bodies]]
+material = "snow"
+shape = "box"
+min = [0.2, 0.2, 0.0]
+max = [1.2, 0.7, 0.5]
+[[bodies]]
+material = "rock"
+shape = "box"
+min = [0.5, 0.35, 0.55]
+max = [0.7, 0.55, 0.75]
+velocity = [0, 0, -20]
+)";
+
+// A 3-D dam break of softened Tait water (c = 30 m/s): 250k particles.
+const char* kWater = R"(
+[simulation]
+dx = %DX%
+particles_per_cell = 8
+end_time = 10
+[domain]
+min = [0, 0, 0]
+max = [2.0, 0.5, 1.1]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 30
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.5, 0.5, 1.0]
+)";
+
 const std::map<std::string, Case>& cases() {
   static const std::map<std::string, Case> c{
       {"elastic", {"elastic slab falling on a slip floor", kElastic, 0.02}},
+      {"granular", {"Drucker-Prager column collapsing on a rough floor", kGranular, 0.02}},
+      {"snow", {"Cam Clay snow block hit by a rock block", kSnow, 0.02}},
+      {"water", {"Tait water dam break", kWater, 0.02}},
+      {"terrain", {"the default scene: rock avalanche into snow on generated terrain", "", 4.0}},
   };
   return c;
 }
@@ -77,7 +162,9 @@ int runBenchmarks(const BenchOptions& opt) {
     double oneThread = 0;
     for (int threads : opt.threads) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-      SceneSetup s = loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
+      SceneSetup s = c.toml.empty()
+                         ? loadSceneString(defaultSceneText(), "bench:" + name, {"simulation.dx=" + std::string(dxs)})
+                         : loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
       Simulation sim(s.settings, std::move(s.groups));
       for (int i = 0; i < opt.warmup; ++i) sim.step();
       const PhaseTimes before = sim.phaseTimes();
