@@ -1,0 +1,281 @@
+#include "tools/validation_cases.h"
+
+#include "engine/simulation.h"
+#include "io/scene.h"
+
+#include <chrono>
+#include <cstdarg>
+#include <cstdio>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace talus::validation {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, RunCost& cost) {
+  SceneSetup s = loadSceneString(toml, "validation.toml",
+                                 {"simulation.particles_per_cell=" + std::to_string(r.particlesPerCell),
+                                  "simulation.cfl=" + std::to_string(r.cfl)});
+  auto sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
+  cost.particles = sim->particleCount();
+  return sim;
+}
+
+void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost) {
+  cost.steps = sim.steps();
+  cost.wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+Vec3d centreOfMass(const Simulation& sim) {
+  Vec3d c = Vec3d::Zero();
+  double m = 0;
+  for (const auto* g : sim.groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      c += double(g->particles.mass[i]) * g->particles.x[i].cast<double>();
+      m += double(g->particles.mass[i]);
+    }
+  return c / m;
+}
+
+double meanVelocityX(const Simulation& sim) {
+  double p = 0, m = 0;
+  for (const auto* g : sim.groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      p += double(g->particles.mass[i]) * double(g->particles.v[i].x());
+      m += double(g->particles.mass[i]);
+    }
+  return p / m;
+}
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buf[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  return buf;
+}
+
+/// Farthest bin (width `bin`) of a contiguous run from x = 0 holding at least `perBin` particles.
+double contiguousFront(const Simulation& sim, double bin, int perBin) {
+  std::map<int, int> count;
+  const double ox = sim.settings().origin.x();
+  for (const auto* g : sim.groups())
+    for (const Vec3& x : g->particles.x) ++count[int(std::floor((double(x.x()) + ox) / bin))];
+  double front = 0;
+  for (const auto& [b, n] : count)
+    if (n >= perBin) front = std::max(front, (b + 1) * bin);
+  return front;
+}
+
+} // namespace
+
+SlidingBlockResult slidingBlock(double mu, const Resolution& r, double endTime, double gravityRamp) {
+  constexpr double kTheta = 30.0 * M_PI / 180.0, kAzimuth = 20.0 * M_PI / 180.0, kG = 9.81;
+  const double dx = 0.2 / r.cells;
+  const Vec3d n(std::sin(kTheta) * std::cos(kAzimuth), std::sin(kTheta) * std::sin(kAzimuth), std::cos(kTheta));
+  const Vec3d s(std::cos(kTheta) * std::cos(kAzimuth), std::cos(kTheta) * std::sin(kAzimuth), -std::sin(kTheta));
+  const Vec3d p0(0.6, 0.6, 1.4), c = p0 + 0.1 * n; // bottom face on the plane
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 10
+gravity = [0, 0, -9.81]
+gravity_ramp = %.9g
+[domain]
+min = [0, 0, 0]
+max = [2.2, 1.6, 1.8]
+walls = "slip"
+[terrain]
+plane = { point = [%.9g, %.9g, %.9g], normal = [%.9g, %.9g, %.9g] }
+boundary = "friction"
+friction = %.9g
+[[materials]]
+name = "block"
+model = "elastic"
+density = 1000
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+[[bodies]]
+material = "block"
+shape = "box"
+center = [%.9g, %.9g, %.9g]
+size = [0.4, 0.3, 0.2]
+rotation = [0, 30, 20]
+)", dx, gravityRamp, p0.x(), p0.y(), p0.z(), n.x(), n.y(), n.z(), mu, c.x(), c.y(), c.z());
+  SlidingBlockResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  const Vec3d c0 = centreOfMass(*sim);
+  const double a = kG * (std::sin(kTheta) - mu * std::cos(kTheta));
+  for (int i = 1; i * 0.05 <= endTime + 1e-9; ++i) {
+    const double t = i * 0.05;
+    sim->advanceTo(t);
+    const double disp = (centreOfMass(*sim) - c0).dot(s), exact = a > 0 ? 0.5 * a * t * t : 0.0;
+    res.t.push_back(t), res.s.push_back(disp), res.exact.push_back(exact);
+    if (exact > 5 * dx) res.maxRelError = std::max(res.maxRelError, std::abs(disp / exact - 1));
+    res.restDisplacement = std::abs(disp);
+  }
+  double p2 = 0, m = 0;
+  for (const auto* g : sim->groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      p2 += double(g->particles.mass[i]) * double(g->particles.v[i].squaredNorm());
+      m += double(g->particles.mass[i]);
+    }
+  res.restSpeed = std::sqrt(p2 / m);
+  finish(*sim, t0, res);
+  return res;
+}
+
+ElasticBarResult elasticBar(const Resolution& r) {
+  const double L = 1.0, E = 1e5, rho = 1000;
+  const double dx = L / r.cells, half = std::max(0.0625, 0.5 * dx); // cross-section at least one cell
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 10
+gravity = [0, 0, 0]
+[domain]
+min = [0, -0.5, -0.5]
+max = [1.5, 0.5, 0.5]
+walls = "sticky"
+[[materials]]
+name = "bar"
+model = "elastic"
+density = 1000
+youngs_modulus = 1e5
+poisson_ratio = 0.0
+[[bodies]]
+material = "bar"
+shape = "box"
+min = [0, %.9g, %.9g]
+max = [1.0, %.9g, %.9g]
+)", dx, -half, -half, half, half);
+  ElasticBarResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  // First mode, v(x) = v0 sin(pi x / 2L); small amplitude keeps strains ~1e-3.
+  for (auto* g : sim->groups())
+    for (size_t i = 0; i < g->size(); ++i)
+      g->particles.v[i] = Vec3(Real(0.01 * std::sin(M_PI * g->particles.x[i].x() / (2 * L))), 0, 0);
+  res.exact = 4 * L / std::sqrt(E / rho);
+  std::vector<double> crossings;
+  double prevT = 0, prevV = meanVelocityX(*sim);
+  while (sim->time() < 2.2 * res.exact) {
+    sim->step();
+    const double v = meanVelocityX(*sim);
+    if ((prevV > 0) != (v > 0)) crossings.push_back(prevT + (sim->time() - prevT) * prevV / (prevV - v));
+    prevT = sim->time(), prevV = v;
+  }
+  if (crossings.size() < 4) throw std::runtime_error("elastic bar: fewer than four zero crossings");
+  res.period = 0.5 * (crossings[3] - crossings[1]) + 0.5 * (crossings[2] - crossings[0]);
+  res.relError = res.period / res.exact - 1;
+  finish(*sim, t0, res);
+  return res;
+}
+
+DamBreakResult damBreak(const std::string& dataFile, const Resolution& r) {
+  std::ifstream in(dataFile);
+  if (!in) throw std::runtime_error(dataFile + ": cannot read the Martin & Moyce data");
+  std::vector<std::pair<double, double>> data;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || line[0] == 'T') continue;
+    std::stringstream ss(line);
+    double T, Z;
+    char comma;
+    if (ss >> T >> comma >> Z && T <= 3.0) data.emplace_back(T, Z);
+  }
+  // a = 0.1 m (Froude scaling), two cells across the flume, water softened to c = 30 m/s
+  // (ten times the peak speed 2 sqrt(2 g a)).
+  const double a = 0.1, dx = a / r.cells, depth = 2 * dx;
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 10
+[domain]
+min = [0, 0, 0]
+max = [0.6, %.9g, 0.25]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 30
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.1, %.9g, 0.2]
+)", dx, depth, depth);
+  DamBreakResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  const double tScale = std::sqrt(2 * 9.81 / a);
+  // One layer of particles across the flume per bin of one particle spacing.
+  const double spacing = dx / std::cbrt(double(r.particlesPerCell));
+  const int perLayer = int(std::lround(depth / spacing));
+  for (const auto& [T, Zexp] : data) {
+    sim->advanceTo(T / tScale);
+    const double Z = contiguousFront(*sim, spacing, perLayer) / a;
+    res.T.push_back(T), res.Z.push_back(Z), res.Zexp.push_back(Zexp);
+    const double e = std::abs(Z / Zexp - 1);
+    res.meanRelError += e / double(data.size());
+    res.maxRelError = std::max(res.maxRelError, e);
+  }
+  finish(*sim, t0, res);
+  return res;
+}
+
+ColumnCollapseResult columnCollapse(double aspect, const Resolution& r) {
+  const double L0 = 0.2, dx = L0 / r.cells, H = aspect * L0;
+  const double reach = L0 * (2.5 + 2.5 * std::pow(aspect, 2.0 / 3.0));
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 100
+[domain]
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0], normal = [0, 0, 1] }
+boundary = "friction"
+friction = 0.625
+[[materials]]
+name = "sand"
+model = "drucker_prager"
+density = 1500
+youngs_modulus = 5e5
+poisson_ratio = 0.3
+friction_angle = 32
+cone = "plane_strain"
+[[bodies]]
+material = "sand"
+shape = "box"
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+)", dx, reach, 2 * dx, 1.1 * H, L0, 2 * dx, H);
+  ColumnCollapseResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  sim->advanceTo(12 * std::sqrt(H / 9.81)); // the collapse lasts a few sqrt(H/g)
+  const double spacing = dx / std::cbrt(double(r.particlesPerCell));
+  const double front = contiguousFront(*sim, spacing, int(std::lround(2 * dx / spacing)));
+  res.runOut = (front - L0) / L0;
+  res.reference = aspect < 1.8 ? 1.2 * aspect : 1.9 * std::pow(aspect, 2.0 / 3.0);
+  res.relError = res.runOut / res.reference - 1;
+  res.finalRmsSpeed = std::sqrt(2 * sim->kineticEnergy() / sim->totalMass());
+  res.collapseSpeedScale = std::sqrt(9.81 * H);
+  finish(*sim, t0, res);
+  return res;
+}
+
+} // namespace talus::validation
