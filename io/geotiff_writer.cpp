@@ -26,8 +26,10 @@ std::string gdalError(const std::string& what) {
 
 std::string crsToWkt(const std::string& userInput) {
   OGRSpatialReference srs;
-  if (srs.SetFromUserInput(userInput.c_str()) != OGRERR_NONE)
-    throw std::runtime_error(gdalError("unrecognised CRS '" + userInput + "'"));
+  CPLPushErrorHandler(CPLQuietErrorHandler); // the message goes into the exception instead
+  const OGRErr err = srs.SetFromUserInput(userInput.c_str());
+  CPLPopErrorHandler();
+  if (err != OGRERR_NONE) throw std::runtime_error(gdalError("unrecognised CRS '" + userInput + "'"));
   char* wkt = nullptr;
   srs.exportToWkt(&wkt);
   std::string out = wkt ? wkt : "";
