@@ -13,8 +13,25 @@ using chart::Align;
 
 void writeLineChart(const std::string& path, const std::string& title, const std::string& xLabel,
                     const std::string& yLabel, const std::vector<double>& x, const std::vector<ChartLine>& lines) {
-  const int W = 860, H = 500;
-  const double L = 90, R = 24, T = 56, B = 64, pw = W - L - R, ph = H - T - B;
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+  cairo_t* cr = cairo_create(s);
+  // The legend sits right of the plot, so it never hides a line.
+  const bool legend = lines.size() > 1 || (lines.size() == 1 && !lines[0].label.empty());
+  double legendW = 0;
+  if (legend) {
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, 12);
+    for (const auto& l : lines) {
+      cairo_text_extents_t e;
+      cairo_text_extents(cr, l.label.c_str(), &e);
+      legendW = std::max(legendW, e.x_advance + 44);
+    }
+  }
+  cairo_destroy(cr);
+  cairo_surface_destroy(s);
+
+  const double pw = 720, ph = 400, L = 90, R = 24 + (legend ? legendW + 12 : 0), T = 56, B = 64;
+  const int W = int(L + pw + R), H = int(T + ph + B);
   double x0 = x.empty() ? 0 : x.front(), x1 = x.empty() ? 1 : x.back();
   double y0 = std::numeric_limits<double>::infinity(), y1 = -y0;
   for (const auto& l : lines)
@@ -24,16 +41,16 @@ void writeLineChart(const std::string& path, const std::string& title, const std
   if (y1 - y0 < 1e-12 * std::max(1.0, std::abs(y1))) y0 -= 0.5 * std::max(1.0, std::abs(y0)), y1 += 0.5 * std::max(1.0, std::abs(y1));
   if (!(x1 > x0)) x1 = x0 + 1;
   double ystep = 1, xstep = 1;
-  auto yt = chart::niceTicks(y0, y1, 6, &ystep);
-  // Extend the y range to whole ticks so lines never touch the frame awkwardly.
+  chart::niceTicks(y0, y1, 6, &ystep);
+  // Extend the y range to whole ticks so lines never run along the frame.
   y0 = std::floor(y0 / ystep + 1e-9) * ystep, y1 = std::ceil(y1 / ystep - 1e-9) * ystep;
-  yt = chart::niceTicks(y0, y1, 6, &ystep);
+  const auto yt = chart::niceTicks(y0, y1, 6, &ystep);
   const auto xt = chart::niceTicks(x0, x1, 8, &xstep);
   auto px = [&](double v) { return L + pw * (v - x0) / (x1 - x0); };
   auto py = [&](double v) { return T + ph * (1 - (v - y0) / (y1 - y0)); };
 
-  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
-  cairo_t* cr = cairo_create(s);
+  s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
+  cr = cairo_create(s);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   // Grid and ticks.
@@ -62,56 +79,51 @@ void writeLineChart(const std::string& path, const std::string& title, const std
   chart::text(cr, L + pw / 2, H - 14, xLabel, 13, Align::Centre, Align::End);
   chart::textRotated(cr, 22, T + ph / 2, yLabel, 13);
 
-  // Lines, clipped to the plot area.
+  // Past ten lines the colours repeat, dashed.
+  auto pen = [&](size_t i) {
+    const chart::Rgb c = chart::lineColour(int(i));
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    const double dash[] = {6, 4};
+    cairo_set_dash(cr, dash, i >= 10 ? 2 : 0, 0);
+  };
   cairo_save(cr);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_clip(cr);
   cairo_set_line_width(cr, 2);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (size_t i = 0; i < lines.size(); ++i) {
-    const chart::Rgb c = chart::lineColour(int(i));
-    cairo_set_source_rgb(cr, c.r, c.g, c.b);
-    bool pen = false;
+    pen(i);
+    bool down = false;
     for (size_t k = 0; k < x.size() && k < lines[i].y.size(); ++k) {
       const double v = lines[i].y[k];
       if (!std::isfinite(v)) {
-        pen = false;
+        down = false;
         continue;
       }
-      if (pen) cairo_line_to(cr, px(x[k]), py(v));
-      else cairo_move_to(cr, px(x[k]), py(v)), pen = true;
+      if (!down) {
+        cairo_move_to(cr, px(lines[i].steps && k > 0 ? x[k - 1] : x[k]), py(v));
+        if (lines[i].steps && k > 0) cairo_line_to(cr, px(x[k]), py(v));
+        down = true;
+        continue;
+      }
+      if (lines[i].steps) cairo_line_to(cr, px(x[k - 1]), py(v));
+      cairo_line_to(cr, px(x[k]), py(v));
     }
     cairo_stroke(cr);
   }
   cairo_restore(cr);
 
-  // Legend, top right inside the plot.
-  if (lines.size() > 1 || (lines.size() == 1 && !lines[0].label.empty())) {
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, 12);
-    double wmax = 0;
-    for (const auto& l : lines) {
-      cairo_text_extents_t e;
-      cairo_text_extents(cr, l.label.c_str(), &e);
-      wmax = std::max(wmax, e.x_advance);
-    }
-    const double lw = wmax + 44, lh = 18.0 * lines.size() + 8, lx = L + pw - lw - 8, ly = T + 8;
-    cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-    cairo_rectangle(cr, lx, ly, lw, lh);
-    cairo_fill_preserve(cr);
-    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
-    cairo_set_line_width(cr, 1);
-    cairo_stroke(cr);
+  if (legend) {
+    const double lx = L + pw + 12, ly = T;
     for (size_t i = 0; i < lines.size(); ++i) {
-      const chart::Rgb c = chart::lineColour(int(i));
-      const double yy = ly + 4 + 18.0 * i + 9;
-      cairo_set_source_rgb(cr, c.r, c.g, c.b);
+      const double yy = ly + 8 + 18.0 * i;
+      pen(i);
       cairo_set_line_width(cr, 2);
-      cairo_move_to(cr, lx + 8, yy);
-      cairo_line_to(cr, lx + 30, yy);
+      cairo_move_to(cr, lx, yy);
+      cairo_line_to(cr, lx + 24, yy);
       cairo_stroke(cr);
       cairo_set_source_rgb(cr, 0, 0, 0);
-      chart::text(cr, lx + 36, yy, lines[i].label, 12, Align::Start, Align::Centre);
+      chart::text(cr, lx + 30, yy, lines[i].label, 12, Align::Start, Align::Centre);
     }
   }
   cairo_destroy(cr);
@@ -182,7 +194,10 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
   if (removed >= 0) mass.push_back({"removed (left the domain)", columnValues(t, removed)});
   plot("mass", "Mass in the domain", "mass (kg)", mass);
   plot("speed", "Maximum particle speed", "speed (m/s)", byPrefix(t, "max_speed_m_s"));
-  plot("discharge", "Discharge through sections", "discharge (m\u00b3/s)", byPrefix(t, "discharge_m3_s"));
+  // Discharge rows are means over the interval before them: drawn as steps.
+  std::vector<ChartLine> discharge = byPrefix(t, "discharge_m3_s");
+  for (auto& l : discharge) l.steps = true;
+  plot("discharge", "Discharge through sections (mean over each row's interval)", "discharge (m\u00b3/s)", discharge);
   plot("front", "Front position along paths", "distance along path (m)", byPrefix(t, "front_m"));
   plot("front_speed", "Front speed along paths", "speed (m/s)", byPrefix(t, "front_speed_m_s"));
   plot("water_surface", "Highest water surface", "elevation (m)", byPrefix(t, "max_water_surface_m"));

@@ -16,6 +16,7 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
 struct ChartLine {
   std::string label;
   std::vector<double> y;
+  bool steps = false; ///< y[k] is a mean over (x[k-1], x[k]]: drawn as a staircase
 };
 void writeLineChart(const std::string& path, const std::string& title, const std::string& xLabel,
                     const std::string& yLabel, const std::vector<double>& x, const std::vector<ChartLine>& lines);
