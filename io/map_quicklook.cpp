@@ -14,7 +14,7 @@ std::vector<float> hillshade(const RasterGrid& g, const std::vector<float>& z) {
   const double alt = 45 * M_PI / 180, az = 315 * M_PI / 180;
   const double lx = std::cos(alt) * std::sin(az), ly = std::cos(alt) * std::cos(az), lz = std::sin(alt);
   auto at = [&](int c, int r) -> double {
-    c = std::clamp(c, 0, g.nx - 1), r = std::clamp(r, 0, g.ny - 1);
+    if (c < 0 || r < 0 || c >= g.nx || r >= g.ny) return NAN; // edges: one-sided differences
     return z[g.index(c, r)];
   };
   for (int r = 0; r < g.ny; ++r)
@@ -59,6 +59,7 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
   const int w = (grid.nx + f - 1) / f, h = (grid.ny + f - 1) / f;
   const std::vector<float> shade = hillshade(grid, heights);
   std::vector<float> val(size_t(w) * h, 0.f), sh(size_t(w) * h, std::numeric_limits<float>::quiet_NaN());
+  std::vector<uint8_t> missing(size_t(w) * h, 1); // every cell of the block is no data
   float vmaxData = 0;
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
@@ -68,7 +69,7 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
       for (int rr = r * f; rr < std::min(grid.ny, (r + 1) * f); ++rr)
         for (int cc = c * f; cc < std::min(grid.nx, (c + 1) * f); ++cc) {
           const float v = values[grid.index(cc, rr)];
-          if (std::isfinite(v) && v != nodata) vm = std::max(vm, v);
+          if (std::isfinite(v) && v != nodata) vm = std::max(vm, v), missing[size_t(r) * w + c] = 0;
           if (!shade.empty() && std::isfinite(shade[grid.index(cc, rr)])) ss += shade[grid.index(cc, rr)], ++sn;
         }
       val[size_t(r) * w + c] = vm;
@@ -92,6 +93,7 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
         const double a = 0.85; // let the relief show through a little
         R = a * col.r + (1 - a) * grey, G = a * col.g + (1 - a) * grey, B = a * col.b + (1 - a) * grey;
       }
+      if (missing[size_t(r) * w + c]) R = G = B = 1; // no data: the page shows through
       px[size_t(r) * stride + c] = argb(1, R, G, B);
     }
   cairo_surface_mark_dirty(img);
