@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace talus {
 
@@ -36,8 +38,8 @@ struct HazardMaps::Impl {
   std::vector<std::vector<float>> deposit, erosion, initial; ///< [layer][cell]
   std::vector<uint8_t> erodibleGroup;
   std::vector<float> cosSlope; ///< NaN until known
-  std::vector<uint32_t> touched;
-  std::vector<uint8_t> mark;
+  std::vector<uint8_t> mark; ///< cell has sums this accumulation
+  std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
   double endTime = 0;
@@ -218,63 +220,104 @@ void HazardMaps::onStep(const Simulation& sim, double) {
 }
 
 void HazardMaps::accumulate(const Simulation& sim) {
+  // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
+  // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
+  // cells into the maxima: no two tasks write one cell, and every cell's sum has the same order
+  // whatever the thread count, so maps are bit-identical at any number of threads.
   Impl& m = *impl_;
   m.lastTime = sim.time();
   m.endTime = sim.time();
   ++accumulations_;
   const auto& groups = sim.groups();
   const int w = m.window.nx, h = m.window.ny;
-  float* all = m.sums[0].data();
+  const float a = float(m.a), bx = float(m.bx), by = float(m.by); // local metres are float anyway
+  m.rowStart.resize(groups.size());
+  m.order.resize(groups.size());
+  std::vector<int32_t> row;
   for (size_t g = 0; g < groups.size(); ++g) {
     const ParticleSet& P = groups[g]->particles;
-    const double invRho = 1.0 / groups[g]->density();
-    float* mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
-    for (size_t p = 0; p < P.size(); ++p) {
-      const double fx = m.a * double(P.x[p][0]) + m.bx, fy = -m.a * double(P.x[p][1]) + m.by;
-      const double cf = std::floor(fx), rf = std::floor(fy);
-      if (cf < -1 || rf < -1 || cf >= w || rf >= h) continue;
-      const int c = int(cf), r = int(rf);
-      const float tx = float(fx - cf), ty = float(fy - rf);
-      const float mass = float(P.mass[p]), v2 = float(P.v[p].squaredNorm());
-      const float q[kSums] = {float(mass * invRho), mass, mass * std::sqrt(v2), mass * v2};
-      const float wt[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
-      for (int k = 0; k < 4; ++k) {
-        const int cc = c + (k & 1), rr = r + (k >> 1);
-        if (cc < 0 || rr < 0 || cc >= w || rr >= h || !(wt[k] > 0)) continue;
-        const uint32_t cell = uint32_t(size_t(rr) * w + cc);
-        float* s = all + kSums * cell;
-        for (int j = 0; j < kSums; ++j) s[j] += wt[k] * q[j];
-        if (mat) {
-          float* sm = mat + kSums * cell;
-          for (int j = 0; j < kSums; ++j) sm[j] += wt[k] * q[j];
-        }
-        if (!m.mark[cell]) m.mark[cell] = 1, m.touched.push_back(cell);
+    row.resize(P.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), 8192), [&](const auto& r) {
+      for (size_t p = r.begin(); p != r.end(); ++p) {
+        const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
+        // First of the two rows the splat covers, plus one (0 .. h), or -1 when it misses.
+        row[p] = fx >= -1 && fx < w && fy >= -1 && fy < h ? int32_t(fy + 1) : -1;
       }
-    }
+    });
+    auto& start = m.rowStart[g];
+    auto& order = m.order[g];
+    start.assign(size_t(h) + 2, 0);
+    for (int32_t r : row)
+      if (r >= 0) ++start[size_t(r) + 1];
+    for (size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
+    order.resize(start.back());
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t p = 0; p < row.size(); ++p)
+      if (row[p] >= 0) order[fill[size_t(row[p])]++] = uint32_t(p);
   }
-  // Fold this step's columns into the maxima and clear only the cells touched.
+
   const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
   const float minH = float(settings_.minHeight);
   const size_t n = m.cells;
-  for (uint32_t cell : m.touched) {
-    const float cosS = m.cosAt(cell);
-    for (int l = 0; l < m.layers; ++l) {
-      float* s = m.sums[size_t(l)].data() + kSums * cell;
-      if (s[0] > 0) {
-        float* mx = m.maxima[size_t(l)].data();
-        const float hv = s[0] * invArea;
-        mx[MaxHeightVertical * n + cell] = std::max(mx[MaxHeightVertical * n + cell], hv);
-        mx[MaxHeightNormal * n + cell] = std::max(mx[MaxHeightNormal * n + cell], hv * cosS);
-        if (hv >= minH) {
-          mx[MaxSpeed * n + cell] = std::max(mx[MaxSpeed * n + cell], s[2] / s[1]);
-          mx[MaxPressure * n + cell] = std::max(mx[MaxPressure * n + cell], 1e-3f * s[3] / s[0]);
+  constexpr int kBand = 8;
+  const int bands = (h + kBand - 1) / kBand;
+  tbb::parallel_for(0, bands, [&](int band) {
+    const int r0 = band * kBand, r1 = std::min(h, r0 + kBand);
+    std::vector<uint32_t> touched;
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const ParticleSet& P = groups[g]->particles;
+      const float invRho = float(1.0 / groups[g]->density());
+      float* all = m.sums[0].data();
+      float* mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
+      // Splats starting in row r0 - 1 reach row r0; those starting in row r1 - 1 end in r1.
+      for (size_t j = size_t(r0); j <= size_t(r1); ++j)
+        for (uint32_t k = m.rowStart[g][j]; k < m.rowStart[g][j + 1]; ++k) {
+          const uint32_t p = m.order[g][k];
+          const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
+          const int c = int(fx + 1) - 1, r = int(j) - 1; // floor, as fx, fy >= -1
+          const float tx = fx - float(c), ty = fy - float(r);
+          const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
+          const float q[kSums] = {mass * invRho, mass, mass * std::sqrt(v2), mass * v2};
+          for (int dr = 0; dr < 2; ++dr) {
+            const int rr = r + dr;
+            if (rr < r0 || rr >= r1) continue;
+            const float wy = dr ? ty : 1 - ty;
+            for (int dc = 0; dc < 2; ++dc) {
+              const int cc = c + dc;
+              const float wt = wy * (dc ? tx : 1 - tx);
+              if (cc < 0 || cc >= w || !(wt > 0)) continue;
+              const uint32_t cell = uint32_t(size_t(rr) * w + cc);
+              float* s = all + kSums * cell;
+              for (int i = 0; i < kSums; ++i) s[i] += wt * q[i];
+              if (mat) {
+                float* sm = mat + kSums * cell;
+                for (int i = 0; i < kSums; ++i) sm[i] += wt * q[i];
+              }
+              if (!m.mark[cell]) m.mark[cell] = 1, touched.push_back(cell);
+            }
+          }
         }
-      }
-      std::fill(s, s + kSums, 0.f);
     }
-    m.mark[cell] = 0;
-  }
-  m.touched.clear();
+    // Fold this band's columns into the maxima and clear only the cells touched.
+    for (uint32_t cell : touched) {
+      const float cosS = m.cosAt(cell);
+      for (int l = 0; l < m.layers; ++l) {
+        float* s = m.sums[size_t(l)].data() + kSums * cell;
+        if (s[0] > 0) {
+          float* mx = m.maxima[size_t(l)].data();
+          const float hv = s[0] * invArea;
+          mx[MaxHeightVertical * n + cell] = std::max(mx[MaxHeightVertical * n + cell], hv);
+          mx[MaxHeightNormal * n + cell] = std::max(mx[MaxHeightNormal * n + cell], hv * cosS);
+          if (hv >= minH) {
+            mx[MaxSpeed * n + cell] = std::max(mx[MaxSpeed * n + cell], s[2] / s[1]);
+            mx[MaxPressure * n + cell] = std::max(mx[MaxPressure * n + cell], 1e-3f * s[3] / s[0]);
+          }
+        }
+        std::fill(s, s + kSums, 0.f);
+      }
+      m.mark[cell] = 0;
+    }
+  });
 }
 
 void HazardMaps::onFinish(const Simulation& sim, bool completed) {

@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <gdal_priv.h>
+#include <cstring>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 using namespace talus;
 namespace fs = std::filesystem;
@@ -36,8 +38,11 @@ struct Raster {
   std::vector<float> v;
   /// Value of the cell containing world (x, y).
   float at(double x, double y) const {
-    int c, r;
-    if (!grid.locate(x, y, c, r)) ADD_FAILURE() << "outside the raster: " << x << ", " << y;
+    int c = 0, r = 0;
+    if (!grid.locate(x, y, c, r)) {
+      ADD_FAILURE() << "outside the raster: " << x << ", " << y;
+      return NAN;
+    }
     return v[grid.index(c, r)];
   }
 };
@@ -251,4 +256,32 @@ quicklook = false
   // the slope from the terrain SDF (bisection, then central differences) is 30 degrees.
   EXPECT_NEAR(hv.at(2600002.125, 1200001.125), 0.5, 1e-5);
   EXPECT_NEAR(hn.at(2600002.125, 1200001.125), 0.5 * std::cos(M_PI / 6), 1e-5);
+}
+
+TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {
+  // Maps are summed in parallel; like the engine, they must not depend on the thread count.
+  auto sim = test::makeSimulation(kSlabs, {"simulation.gravity=[0,0,-9.81]"});
+  MapSettings ms;
+  ms.enabled = true;
+  ms.perMaterial = true;
+  const RasterGrid grid = HazardMaps::domainGrid(sim->settings(), 0.15, "");
+  HazardMaps one(test::tempDir("maps_threads"), grid, nullptr, ms), two(test::tempDir("maps_threads"), grid, nullptr, ms);
+  auto with = [](int threads, auto&& f) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    f();
+  };
+  with(1, [&] { one.onStart(*sim); });
+  with(2, [&] { two.onStart(*sim); });
+  for (int i = 0; i < 20; ++i) {
+    const double dt = sim->step();
+    with(1, [&] { one.onStep(*sim, dt); });
+    with(2, [&] { two.onStep(*sim, dt); });
+  }
+  EXPECT_EQ(one.accumulations(), 21u);
+  for (int layer = 0; layer < 3; ++layer)
+    for (int q = 0; q < HazardMaps::Deposit; ++q) {
+      const auto a = one.raster(HazardMaps::Quantity(q), layer), b = two.raster(HazardMaps::Quantity(q), layer);
+      EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << HazardMaps::stem(HazardMaps::Quantity(q));
+      EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.f);
+    }
 }
