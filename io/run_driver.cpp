@@ -37,12 +37,15 @@ RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
   info.materialNames = scene.materialNames;
   try {
     while (sim.time() < scene.endTime) {
-      const double next = interval > 0 ? std::min(scene.endTime, frame * interval) : scene.endTime;
+      const double frameTime = frame * interval;
+      const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
       sim.advanceTo(next, [&] {
         outputs.step(sim);
         bar.update(sim.time(), sim.steps(), sim.particleSteps());
       });
-      if (interval > 0 && next == frame * interval) outputs.frame(sim, frame++);
+      // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
+      // rounding of it.
+      if (interval > 0 && next >= frameTime - 1e-9 * interval) outputs.frame(sim, frame++);
     }
   } catch (const NumericalError& e) {
     res.ok = false;

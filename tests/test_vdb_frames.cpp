@@ -2,6 +2,7 @@
 // through its header and binary layout. Values are checked against sums computed here from the
 // particles with the quadratic B-spline, not against the writer's own scatter.
 #include "io/ply_writer.h"
+#include "io/run_driver.h"
 #include "io/vdb_frame_writer.h"
 #include "test_support.h"
 
@@ -223,4 +224,24 @@ TEST(OutputPly, BinaryPointCloudHoldsEveryParticleInWorldCoordinates) {
     EXPECT_EQ(vel[d], float(g->particles.v[p][d]));
   }
   EXPECT_EQ(mat, g->index());
+}
+
+TEST(OutputFrames, EveryFrameIsWrittenIncludingOneAtTheEndTime) {
+  // end_time = 0.3 and frame_interval = 0.1: 3 * 0.1 is 0.30000000000000004 in floating point,
+  // and frame 3 must still be written.
+  const std::string dir = test::tempDir("frames_end");
+  SceneSetup s = loadSceneString(kScene, "test.toml",
+                                 {"simulation.end_time=0.3", "output.frame_interval=0.1", "output.ply=true",
+                                  "materials.rock.youngs_modulus=1e5", "materials.ice.youngs_modulus=1e5"});
+  RunOptions opt;
+  opt.outDir = dir;
+  opt.progress = false;
+  ASSERT_TRUE(runScene(s, opt).ok);
+  for (int f = 0; f <= 3; ++f)
+    for (const char* stem : {"volume", "particles"}) {
+      char name[64];
+      std::snprintf(name, sizeof name, "/frames/%s_%05d.%s", stem, f, std::string(stem) == "volume" ? "vdb" : "ply");
+      EXPECT_TRUE(std::filesystem::exists(dir + name)) << name;
+    }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/frames/volume_00004.vdb"));
 }
