@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 namespace talus {
 
@@ -37,36 +39,48 @@ double FrontTracker::front(const Simulation& sim) const {
   for (const MaterialGroup* g : sim.groups()) {
     const ParticleSet& P = g->particles;
     const double invRho = 1.0 / g->density();
-    for (size_t p = 0; p < P.size(); ++p) {
-      const Eigen::Vector2d x(P.x[p][0], P.x[p][1]);
-      if (x.x() < lo.x() || x.y() < lo.y() || x.x() > hi.x() || x.y() > hi.y()) continue;
-      // Nearest point of the polyline: distance along it and signed lateral offset (left > 0).
-      double best = std::numeric_limits<double>::infinity(), s = 0, lateral = 0;
-      for (size_t k = 0; k < nseg; ++k) {
-        const Eigen::Vector2d a = local_[k], d = local_[k + 1] - a;
-        const double len = cumulative_[k + 1] - cumulative_[k];
-        const Eigen::Vector2d u = d / len, r = x - a;
-        const double t = r.dot(u);
-        if ((t < 0 && k == 0) || (t > len && k + 1 == nseg)) {
-          // Beyond the path's ends: only the perpendicular strip counts.
-          continue;
+    // Chunks bin in parallel into their own arrays, summed in a fixed tree: the same front at
+    // any thread count.
+    auto binRange = [&](const tbb::blocked_range<size_t>& range, std::vector<double> acc) {
+      if (acc.empty()) acc.assign(vol.size(), 0.0);
+      for (size_t p = range.begin(); p != range.end(); ++p) {
+        const Eigen::Vector2d x(P.x[p][0], P.x[p][1]);
+        if (x.x() < lo.x() || x.y() < lo.y() || x.x() > hi.x() || x.y() > hi.y()) continue;
+        // Nearest point of the polyline: distance along it and signed lateral offset (left > 0).
+        double best = std::numeric_limits<double>::infinity(), s = 0, lateral = 0;
+        for (size_t k = 0; k < nseg; ++k) {
+          const Eigen::Vector2d a = local_[k], d = local_[k + 1] - a;
+          const double len = cumulative_[k + 1] - cumulative_[k];
+          const Eigen::Vector2d u = d / len, r = x - a;
+          const double t = r.dot(u);
+          if ((t < 0 && k == 0) || (t > len && k + 1 == nseg)) continue; // beyond the path's ends
+          const double tc = std::clamp(t, 0.0, len);
+          const double dist = (r - tc * u).norm();
+          if (dist < best) best = dist, s = cumulative_[k] + tc, lateral = u.x() * r.y() - u.y() * r.x();
         }
-        const double tc = std::clamp(t, 0.0, len);
-        const double dist = (r - tc * u).norm();
-        if (dist < best) best = dist, s = cumulative_[k] + tc, lateral = u.x() * r.y() - u.y() * r.x();
+        if (!(best <= reach)) continue;
+        const int lane = std::clamp(int(std::floor(lateral / bin_ + 0.5)) + half, 0, lanes_ - 1);
+        const double fs = s / bin_ - 0.5;
+        const int b0 = int(std::floor(fs));
+        const double w1 = fs - b0;
+        const double v = double(P.mass[p]) * invRho;
+        double* lb = acc.data() + size_t(lane) * nbins;
+        if (b0 >= 0 && b0 < nbins) lb[b0] += (1 - w1) * v;
+        if (b0 + 1 >= 0 && b0 + 1 < nbins) lb[b0 + 1] += w1 * v;
+        // The outer half-bins at both ends fold into the end bins: no volume is lost.
+        if (b0 < 0) lb[0] += (1 - w1) * v;
+        if (b0 + 1 >= nbins) lb[nbins - 1] += w1 * v;
       }
-      if (!(best <= reach)) continue;
-      const int lane = std::clamp(int(std::floor(lateral / bin_ + 0.5)) + half, 0, lanes_ - 1);
-      const double fs = s / bin_ - 0.5;
-      const int b0 = int(std::floor(fs));
-      const double w1 = fs - b0;
-      const double v = double(P.mass[p]) * invRho;
-      if (b0 >= 0 && b0 < nbins) vol[size_t(lane) * nbins + b0] += (1 - w1) * v;
-      if (b0 + 1 >= 0 && b0 + 1 < nbins) vol[size_t(lane) * nbins + b0 + 1] += w1 * v;
-      // The outer half-bins at both ends fold into the end bins: no volume is lost.
-      if (b0 < 0) vol[size_t(lane) * nbins] += (1 - w1) * v;
-      if (b0 + 1 >= nbins) vol[size_t(lane) * nbins + nbins - 1] += w1 * v;
-    }
+      return acc;
+    };
+    const std::vector<double> groupVol = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, P.size(), 16384), std::vector<double>(), binRange,
+        [](std::vector<double> a, const std::vector<double>& b) {
+          if (a.empty()) return b;
+          for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
+          return a;
+        });
+    for (size_t i = 0; i < groupVol.size(); ++i) vol[i] += groupVol[i];
   }
   const double invArea = 1.0 / (bin_ * bin_);
   double frontPos = std::numeric_limits<double>::quiet_NaN();

@@ -27,6 +27,13 @@ std::string fileSafe(const std::string& s) {
 }
 } // namespace
 
+/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
+struct Splat {
+  int32_t col;
+  float tx, ty;
+  float q[kSums];
+};
+
 struct HazardMaps::Impl {
   RasterGrid window; ///< the part of the grid the domain covers (same cells, shifted origin)
   int c0 = 0, r0 = 0;
@@ -40,6 +47,7 @@ struct HazardMaps::Impl {
   std::vector<float> cosSlope; ///< NaN until known
   std::vector<uint8_t> mark; ///< cell has sums this accumulation
   std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
+  std::vector<std::vector<Splat>> splats;              ///< per group and particle
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
   double endTime = 0;
@@ -233,27 +241,58 @@ void HazardMaps::accumulate(const Simulation& sim) {
   const float a = float(m.a), bx = float(m.bx), by = float(m.by); // local metres are float anyway
   m.rowStart.resize(groups.size());
   m.order.resize(groups.size());
+  m.splats.resize(groups.size());
   std::vector<int32_t> row;
   for (size_t g = 0; g < groups.size(); ++g) {
     const ParticleSet& P = groups[g]->particles;
+    const float invRho = float(1.0 / groups[g]->density());
+    auto& splat = m.splats[g];
     row.resize(P.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), 8192), [&](const auto& r) {
-      for (size_t p = r.begin(); p != r.end(); ++p) {
+    splat.resize(P.size());
+    // Fixed chunks (not thread-dependent): each computes its particles' splats and counts them
+    // per row; a stable counting sort then lists particles by row, chunk by chunk, in the order
+    // a serial pass would.
+    constexpr size_t kChunk = 16384;
+    const size_t chunks = (P.size() + kChunk - 1) / kChunk, rows = size_t(h) + 1;
+    std::vector<uint32_t> count(chunks * rows, 0);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
+      uint32_t* cnt = count.data() + ch * rows;
+      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p) {
         const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
-        // First of the two rows the splat covers, plus one (0 .. h), or -1 when it misses.
-        row[p] = fx >= -1 && fx < w && fy >= -1 && fy < h ? int32_t(fy + 1) : -1;
+        if (!(fx >= -1 && fx < w && fy >= -1 && fy < h)) {
+          row[p] = -1;
+          continue;
+        }
+        // First of the two rows the splat covers, plus one (0 .. h); floor via int as fx, fy >= -1.
+        row[p] = int32_t(fy + 1);
+        ++cnt[size_t(row[p])];
+        Splat& sp = splat[p];
+        sp.col = int32_t(fx + 1) - 1;
+        sp.tx = fx - float(sp.col);
+        sp.ty = fy - float(row[p] - 1);
+        const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
+        sp.q[0] = mass * invRho, sp.q[1] = mass, sp.q[2] = mass * std::sqrt(v2), sp.q[3] = mass * v2;
       }
     });
     auto& start = m.rowStart[g];
     auto& order = m.order[g];
-    start.assign(size_t(h) + 2, 0);
-    for (int32_t r : row)
-      if (r >= 0) ++start[size_t(r) + 1];
-    for (size_t r = 1; r < start.size(); ++r) start[r] += start[r - 1];
-    order.resize(start.back());
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t p = 0; p < row.size(); ++p)
-      if (row[p] >= 0) order[fill[size_t(row[p])]++] = uint32_t(p);
+    start.assign(rows + 1, 0);
+    uint32_t total = 0; // count[] becomes each (chunk, row)'s first slot in `order`
+    for (size_t r = 0; r < rows; ++r) {
+      start[r] = total;
+      for (size_t ch = 0; ch < chunks; ++ch) {
+        const uint32_t c = count[ch * rows + r];
+        count[ch * rows + r] = total;
+        total += c;
+      }
+    }
+    start[rows] = total;
+    order.resize(total);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
+      uint32_t* next = count.data() + ch * rows;
+      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p)
+        if (row[p] >= 0) order[next[size_t(row[p])]++] = uint32_t(p);
+    });
   }
 
   const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
@@ -264,39 +303,36 @@ void HazardMaps::accumulate(const Simulation& sim) {
   tbb::parallel_for(0, bands, [&](int band) {
     const int r0 = band * kBand, r1 = std::min(h, r0 + kBand);
     std::vector<uint32_t> touched;
+    uint8_t* mark = m.mark.data();
     for (size_t g = 0; g < groups.size(); ++g) {
-      const ParticleSet& P = groups[g]->particles;
-      const float invRho = float(1.0 / groups[g]->density());
-      float* all = m.sums[0].data();
-      float* mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
+      float* __restrict all = m.sums[0].data();
+      float* __restrict mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
+      const Splat* splats = m.splats[g].data();
+      const uint32_t* order = m.order[g].data();
+      const uint32_t* start = m.rowStart[g].data();
       // Splats starting in row r0 - 1 reach row r0; those starting in row r1 - 1 end in r1.
-      for (size_t j = size_t(r0); j <= size_t(r1); ++j)
-        for (uint32_t k = m.rowStart[g][j]; k < m.rowStart[g][j + 1]; ++k) {
-          const uint32_t p = m.order[g][k];
-          const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
-          const int c = int(fx + 1) - 1, r = int(j) - 1; // floor, as fx, fy >= -1
-          const float tx = fx - float(c), ty = fy - float(r);
-          const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
-          const float q[kSums] = {mass * invRho, mass, mass * std::sqrt(v2), mass * v2};
-          for (int dr = 0; dr < 2; ++dr) {
-            const int rr = r + dr;
-            if (rr < r0 || rr >= r1) continue;
-            const float wy = dr ? ty : 1 - ty;
+      for (int j = r0; j <= r1; ++j) {
+        const int r = j - 1;
+        const bool upper = r >= r0, lower = r + 1 < r1; // which of the splat's rows are ours
+        for (uint32_t k = start[j]; k < start[j + 1]; ++k) {
+          const Splat sp = splats[order[k]];
+          const float wx[2] = {1 - sp.tx, sp.tx}, wy[2] = {1 - sp.ty, sp.ty};
+          for (int dr = upper ? 0 : 1; dr < (lower ? 2 : 1); ++dr)
             for (int dc = 0; dc < 2; ++dc) {
-              const int cc = c + dc;
-              const float wt = wy * (dc ? tx : 1 - tx);
+              const int cc = sp.col + dc;
+              const float wt = wy[dr] * wx[dc];
               if (cc < 0 || cc >= w || !(wt > 0)) continue;
-              const uint32_t cell = uint32_t(size_t(rr) * w + cc);
+              const uint32_t cell = uint32_t(size_t(r + dr) * w + cc);
               float* s = all + kSums * cell;
-              for (int i = 0; i < kSums; ++i) s[i] += wt * q[i];
+              s[0] += wt * sp.q[0], s[1] += wt * sp.q[1], s[2] += wt * sp.q[2], s[3] += wt * sp.q[3];
               if (mat) {
                 float* sm = mat + kSums * cell;
-                for (int i = 0; i < kSums; ++i) sm[i] += wt * q[i];
+                sm[0] += wt * sp.q[0], sm[1] += wt * sp.q[1], sm[2] += wt * sp.q[2], sm[3] += wt * sp.q[3];
               }
-              if (!m.mark[cell]) m.mark[cell] = 1, touched.push_back(cell);
+              if (!mark[cell]) mark[cell] = 1, touched.push_back(cell);
             }
-          }
         }
+      }
     }
     // Fold this band's columns into the maxima and clear only the cells touched.
     for (uint32_t cell : touched) {

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 namespace talus {
 
@@ -34,7 +36,7 @@ public:
   void onStart(const Simulation& sim) override {
     names_.clear();
     for (const auto* g : sim.groups()) names_.push_back(columnSafe(g->name()));
-    potential0_ = sim.potentialEnergy();
+    first_ = true;
   }
   std::vector<std::string> header() const override {
     std::vector<std::string> h;
@@ -47,28 +49,45 @@ public:
     return h;
   }
   void sample(const Simulation& sim, double, std::vector<double>& row) override {
-    double total = 0;
-    for (const auto* g : sim.groups()) {
-      double e = 0;
-      for (size_t i = 0; i < g->size(); ++i)
-        e += 0.5 * double(g->particles.mass[i]) * double(g->particles.v[i].squaredNorm());
-      row.push_back(e);
-      total += e;
+    // One parallel pass per material; deterministic splitting, so the sums do not depend on
+    // the thread count.
+    struct Sums {
+      double kinetic = 0, mass = 0, potential = 0;
+    };
+    const Vec3d g = sim.settings().gravity;
+    std::vector<Sums> sums;
+    for (const auto* grp : sim.groups()) {
+      const ParticleSet& P = grp->particles;
+      sums.push_back(tbb::parallel_deterministic_reduce(
+          tbb::blocked_range<size_t>(0, P.size(), 8192), Sums{},
+          [&](const tbb::blocked_range<size_t>& r, Sums acc) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+              const double m = double(P.mass[i]);
+              acc.kinetic += 0.5 * m * double(P.v[i].squaredNorm());
+              acc.mass += m;
+              acc.potential -= m * g.dot(P.x[i].cast<double>());
+            }
+            return acc;
+          },
+          [](Sums a, const Sums& b) {
+            a.kinetic += b.kinetic, a.mass += b.mass, a.potential += b.potential;
+            return a;
+          }));
     }
-    if (names_.size() > 1) row.push_back(total);
-    row.push_back(sim.potentialEnergy() - potential0_);
-    for (const auto* g : sim.groups()) {
-      double m = 0;
-      for (Real mp : g->particles.mass) m += double(mp);
-      row.push_back(m);
-    }
+    double kinetic = 0, potential = 0;
+    for (const Sums& s : sums) row.push_back(s.kinetic), kinetic += s.kinetic, potential += s.potential;
+    if (names_.size() > 1) row.push_back(kinetic);
+    if (first_) potential0_ = potential, first_ = false;
+    row.push_back(potential - potential0_);
+    for (const Sums& s : sums) row.push_back(s.mass);
     row.push_back(sim.totalMassRemoved());
     row.push_back(sim.maxSpeed());
   }
 
 private:
   std::vector<std::string> names_;
-  double potential0_ = 0;
+  double potential0_ = 0; ///< potential energy at the first row (-m g.x, local frame)
+  bool first_ = true;
 };
 
 /// Highest water particle (world z, m): the materials listed in water_materials, or else every
