@@ -51,7 +51,6 @@ struct HazardMaps::Impl {
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
   double endTime = 0;
-  bool finished = false;
   std::shared_ptr<const TerrainSdf> terrain;
   Vec3d origin = Vec3d::Zero();
   double zLo = 0, zHi = 0, dx = 1;
@@ -370,7 +369,6 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
           m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
     }
   }
-  m.finished = true;
 
   namespace fs = std::filesystem;
   std::vector<float> windowHeights;

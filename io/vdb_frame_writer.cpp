@@ -4,6 +4,7 @@
 #include "io/h5_frame_writer.h"
 #include "io/node_scatter.h"
 
+#include <cctype>
 #include <filesystem>
 #include <mutex>
 #include <openvdb/openvdb.h>
