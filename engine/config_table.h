@@ -80,10 +80,11 @@ public:
   void assign(const std::vector<std::string>& path, ConfigValue v);
   const std::map<std::string, ConfigValue>& values() const { return values_; }
 
-private:
-  const ConfigValue* find(const std::string& key) const;
   /// Missing required key: blames a present key that looks like a typo of it, if any.
   [[noreturn]] void missing(const std::string& key) const;
+
+private:
+  const ConfigValue* find(const std::string& key) const;
   std::string file_, path_;
   int line_;
   std::map<std::string, ConfigValue> values_;

@@ -8,6 +8,8 @@
 #include "engine/particle_set.h"
 #include "engine/types.h"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,9 +31,11 @@ struct G2PBlock {
 struct G2PStats {
   Real maxSpeed = 0;
   size_t nonFinite = 0; ///< particles whose velocity or stress became NaN/inf
+  float minFluidJ = 1;  ///< most compressed fluid particle (its sound speed limits dt)
   void merge(const G2PStats& o) {
     if (o.maxSpeed > maxSpeed) maxSpeed = o.maxSpeed;
     nonFinite += o.nonFinite;
+    minFluidJ = std::min(minFluidJ, o.minFluidJ);
   }
 };
 
@@ -53,6 +57,12 @@ public:
   virtual const char* modelName() const = 0;
   /// Fastest elastic/acoustic wave speed (m/s); limits the time step.
   virtual double waveSpeed() const = 0;
+  /// Any other limit on dt (s) this material imposes at grid spacing dx (e.g. viscosity).
+  virtual double stableDtLimit(double dx) const { return std::numeric_limits<double>::infinity(); }
+  /// Called once per step with the merged G2P statistics of all groups.
+  virtual void afterStep(const G2PStats&) {}
+  /// Puts particles [begin, end) in hydrostatic equilibrium below surfaceZ (fluids only).
+  virtual void setHydrostatic(size_t begin, size_t end, double surfaceZ, double g) {}
   /// Gather velocities for particles [begin, end), update deformation, stress and position.
   virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
 

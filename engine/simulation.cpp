@@ -52,6 +52,8 @@ double Simulation::stableDt() const {
     const double g = settings_.gravity.norm();
     dt = g > 0 ? std::sqrt(2 * settings_.cfl * settings_.dx / g) : 1e-3;
   }
+  for (const auto* g : groupPtrs_)
+    if (g->size()) dt = std::min(dt, g->stableDtLimit(settings_.dx));
   return std::min(dt, settings_.maxDt);
 }
 
@@ -90,6 +92,7 @@ double Simulation::step(double dtCap) {
   time_ += dt;
   ++steps_;
   maxSpeed_ = stats.maxSpeed;
+  for (auto* g : groupPtrs_) g->afterStep(stats);
   checkFinite(stats.nonFinite);
   {
     ScopedTimer t(times_.cull);

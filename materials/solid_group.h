@@ -16,6 +16,7 @@ public:
   Model model;
   std::vector<Mat3> F;                        ///< elastic deformation gradient
   std::vector<typename Model::State> state;   ///< plastic state
+  typename Model::State initialState{};       ///< state of newly seeded particles
 
   const char* modelName() const override { return Model::kName; }
   double waveSpeed() const override { return model.waveSpeed(density()); }
@@ -38,7 +39,7 @@ public:
   }
   void resizeState(size_t n) override {
     F.resize(n, Mat3::Identity());
-    state.resize(n, typename Model::State{});
+    state.resize(n, initialState);
   }
   size_t stateBytesPerParticle() const override {
     return sizeof(Mat3) + sizeof(typename Model::State);

@@ -1,0 +1,150 @@
+// Modified Cam Clay for snow (Gaume et al. 2018; physics.md 4.2).
+//
+//   y(p, q) = q^2 (1 + 2 beta) + M^2 (p + beta p0)(p - p0)
+//   p0 = K sinh(xi max(-eps_v, 0))       (eps_v: volumetric plastic Hencky strain)
+//
+// The surface is an ellipse in (p, q) centred at p0 (1 - beta)/2. The return is associative:
+// the closest point on the ellipse in the elastic energy norm |dp|^2/K + |dq|^2/(3 mu), which
+// in coordinates scaled by sqrt(K) and sqrt(3 mu) is the Euclidean closest point on an
+// axis-aligned ellipse (a monotone 1-D root). Hardening is consistent: p0 is iterated with the
+// plastic volume change until it stops moving, so the state lands on the updated ellipse
+// (compaction grows p0, dilation shrinks it, down to zero: loose, cohesionless snow).
+// After the first yield the critical-state slope is M_s instead of M, and the first plastic
+// step already projects onto the M_s surface, so the mapping is idempotent.
+#pragma once
+
+#include "materials/hencky.h"
+
+#include <cmath>
+
+namespace talus {
+
+struct CamClayParams {
+  double M = 1.2;        ///< critical state slope before yield
+  double Ms = 0.4;       ///< critical state slope after first yield
+  double p0 = 175e3;     ///< initial pre-consolidation pressure (Pa)
+  double beta = 0.4;     ///< tension / compression strength ratio
+  double xi = 0.1;       ///< hardening factor
+};
+
+struct CamClayModel {
+  static constexpr const char* kName = "cam_clay";
+  struct State {
+    float volumetricPlasticStrain = 0; ///< eps_v (negative when compacted)
+    uint8_t yielded = 0;
+  };
+
+  HenckyElasticity elastic;
+  CamClayParams params;
+
+  /// eps_v that gives the table's p0 (eq. 10 inverted): particles start there.
+  double initialVolumetricStrain() const { return -std::asinh(params.p0 / elastic.bulk()) / params.xi; }
+  double preconsolidation(double epsV) const {
+    return elastic.bulk() * std::sinh(params.xi * std::max(-epsV, 0.0));
+  }
+  double slope(const State& s) const { return s.yielded ? params.Ms : params.M; }
+
+  double yield(double p, double q, double p0, double M) const {
+    return q * q * (1 + 2 * params.beta) + M * M * (p + params.beta * p0) * (p - p0);
+  }
+  double yield(const Vec3d& eps, const State& s) const {
+    const double tr = eps.sum();
+    const double q = std::sqrt(1.5) * 2 * elastic.mu * (eps - Vec3d::Constant(tr / 3)).norm();
+    return yield(-elastic.bulk() * tr, q, preconsolidation(s.volumetricPlasticStrain), slope(s));
+  }
+
+  Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
+  double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
+
+  /// Closest point (px, py) on the ellipse (x/A)^2 + (y/B)^2 = 1 to (x, y), x, y >= 0, outside.
+  static void closestOnEllipse(double x, double y, double A, double B, double& px, double& py) {
+    // F(t) = (A x / (t + A^2))^2 + (B y / (t + B^2))^2 - 1 decreases and is convex for t >= 0,
+    // so Newton from t = 0 converges monotonically to the root (Eberly's formulation).
+    double t = 0;
+    for (int it = 0; it < 100; ++it) {
+      const double u = A * x / (t + A * A), v = B * y / (t + B * B);
+      const double F = u * u + v * v - 1;
+      if (F <= 1e-15) break;
+      const double dF = -2 * (u * u / (t + A * A) + v * v / (t + B * B));
+      const double step = -F / dF;
+      t += step;
+      if (step <= 1e-16 * (t + A * A + B * B)) break;
+    }
+    px = A * A * x / (t + A * A);
+    py = B * B * y / (t + B * B);
+  }
+
+  /// Energy-norm closest point of (pTr, qTr) on the M_s ellipse of pre-consolidation p0.
+  void projectOntoEllipse(double pTr, double qTr, double p0, double& p, double& q) const {
+    const double K = elastic.bulk(), sK = std::sqrt(K), s3mu = std::sqrt(3 * elastic.mu);
+    const double beta = params.beta;
+    if (p0 <= 0) { // no strength left
+      p = 0, q = 0;
+      return;
+    }
+    const double ap = 0.5 * (1 + beta) * p0, centre = 0.5 * (1 - beta) * p0;
+    const double aq = params.Ms * ap / std::sqrt(1 + 2 * beta);
+    const double x = (pTr - centre) / sK, y = qTr / s3mu, A = ap / sK, B = aq / s3mu;
+    if ((x / A) * (x / A) + (y / B) * (y / B) <= 1) { // already inside
+      p = pTr, q = qTr;
+      return;
+    }
+    double X, Y;
+    closestOnEllipse(std::abs(x), y, A, B, X, Y);
+    p = centre + sK * (x < 0 ? -X : X);
+    q = s3mu * Y;
+  }
+
+  /// Return mapping; true when eps was changed.
+  bool project(Vec3d& eps, State& s) const {
+    const double K = elastic.bulk(), k = std::sqrt(1.5) * 2 * elastic.mu;
+    const double tr = eps.sum(), pTr = -K * tr;
+    const Vec3d dev = eps - Vec3d::Constant(tr / 3);
+    const double a = dev.norm(), qTr = k * a;
+    const double ev0 = s.volumetricPlasticStrain;
+    if (yield(pTr, qTr, preconsolidation(ev0), slope(s)) <= 0) return false;
+
+    // Consistent hardening: find eps_v with G(eps_v) = eps_v - ev0 - (p(eps_v) - pTr) / K = 0,
+    // p(eps_v) being the projection onto the ellipse of p0(eps_v). G runs from -inf (huge p0,
+    // trial inside) to +inf (p0 = 0), so a bracket always exists.
+    double p = 0, q = 0;
+    auto G = [&](double ev) {
+      projectOntoEllipse(pTr, qTr, preconsolidation(ev), p, q);
+      return ev - ev0 - (p - pTr) / K;
+    };
+    double x0 = ev0, g0 = G(x0);
+    double lo, hi, glo, ghi;
+    double step = std::abs(g0) + 1e-9;
+    if (g0 > 0) {
+      hi = x0, ghi = g0, lo = x0 - step, glo = G(lo);
+      while (glo > 0) step *= 2, hi = lo, ghi = glo, lo = x0 - step, glo = G(lo);
+    } else {
+      lo = x0, glo = g0, hi = x0 + step, ghi = G(hi);
+      while (ghi < 0) step *= 2, lo = hi, glo = ghi, hi = x0 + step, ghi = G(hi);
+    }
+    // Illinois false position inside the bracket.
+    double x = hi;
+    int side = 0;
+    for (int it = 0; it < 100 && hi - lo > 1e-14 * (1 + std::abs(hi)); ++it) {
+      x = (lo * ghi - hi * glo) / (ghi - glo);
+      const double gx = G(x);
+      if (gx == 0) break;
+      if (gx > 0) {
+        hi = x, ghi = gx;
+        if (side == 1) glo *= 0.5;
+        side = 1;
+      } else {
+        lo = x, glo = gx;
+        if (side == -1) ghi *= 0.5;
+        side = -1;
+      }
+    }
+    G(x); // leaves p, q of the final eps_v
+    s.volumetricPlasticStrain = float(x);
+    s.yielded = 1;
+    eps = Vec3d::Constant(-p / (3 * K)) + (a > 0 ? q / qTr : 0.0) * dev;
+    return true;
+  }
+};
+
+} // namespace talus

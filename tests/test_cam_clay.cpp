@@ -1,0 +1,92 @@
+// Modified Cam Clay return mapping and hardening, tested alone (physics.md 4.2).
+#include "materials/cam_clay.h"
+
+#include <gtest/gtest.h>
+#include <random>
+
+using namespace talus;
+
+namespace {
+CamClayModel snow() {
+  CamClayModel m;
+  m.elastic = HenckyElasticity::fromYoung(3e6, 0.3);
+  m.params = CamClayParams{1.2, 0.4, 175e3, 0.4, 0.1};
+  return m;
+}
+double pOf(const CamClayModel& m, const Vec3d& e) { return -m.elastic.bulk() * e.sum(); }
+double qOf(const CamClayModel& m, const Vec3d& e) {
+  return std::sqrt(1.5) * 2 * m.elastic.mu * (e - Vec3d::Constant(e.sum() / 3)).norm();
+}
+} // namespace
+
+TEST(CamClay, HardeningFollowsEquationTen) {
+  const auto m = snow();
+  const double K = m.elastic.bulk();
+  EXPECT_NEAR(m.preconsolidation(m.initialVolumetricStrain()), 175e3, 1e-6);
+  for (double ev : {-2.0, -1.0, -0.5, -0.1, 0.0, 0.3})
+    EXPECT_NEAR(m.preconsolidation(ev), K * std::sinh(0.1 * std::max(-ev, 0.0)), 1e-9 * K);
+}
+
+TEST(CamClay, ReturnLandsOnTheSurfaceKeepsAdmissibleStatesAndIsIdempotent) {
+  const auto m = snow();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> strain(-0.3, 0.3), unit(0, 1);
+  int plastic = 0, admissible = 0, compacted = 0, dilated = 0;
+  for (int t = 0; t < 40000; ++t) {
+    Vec3d eps(strain(rng), strain(rng), strain(rng));
+    eps *= std::pow(10.0, -2 * unit(rng));
+    CamClayModel::State s;
+    s.volumetricPlasticStrain = float(m.initialVolumetricStrain() * (0.2 + 1.6 * unit(rng)));
+    s.yielded = unit(rng) < 0.5;
+    const Vec3d trial = eps;
+    const auto s0 = s;
+    const double p0 = m.preconsolidation(s0.volumetricPlasticStrain);
+    const double scale = (1 + 2 * m.params.beta) * std::pow(qOf(m, trial), 2) +
+                         m.params.M * m.params.M * std::pow(std::abs(pOf(m, trial)) + p0, 2);
+    if (!m.project(eps, s)) {
+      EXPECT_LE(m.yield(trial, s0), 0.0);
+      EXPECT_EQ(eps, trial);
+      ++admissible;
+      continue;
+    }
+    ++plastic;
+    EXPECT_TRUE(s.yielded);
+    EXPECT_LE(std::abs(m.yield(eps, s)), 1e-6 * scale);
+    // Compaction (trial beyond the cap) hardens, dilation softens.
+    if (pOf(m, eps) < pOf(m, trial) - 1e-9 * p0) {
+      EXPECT_LE(s.volumetricPlasticStrain, s0.volumetricPlasticStrain);
+      ++compacted;
+    } else if (pOf(m, eps) > pOf(m, trial) + 1e-9 * p0) {
+      EXPECT_GE(s.volumetricPlasticStrain, s0.volumetricPlasticStrain);
+      EXPECT_LE(m.preconsolidation(s.volumetricPlasticStrain), p0 * (1 + 1e-6));
+      ++dilated;
+    }
+    // Associative, closest point in the energy norm: a second projection changes nothing.
+    Vec3d again = eps;
+    auto s2 = s;
+    m.project(again, s2);
+    EXPECT_LE((again - eps).norm(), 1e-6 * (trial.norm() + 1e-9));
+  }
+  EXPECT_GT(plastic, 5000);
+  EXPECT_GT(admissible, 5000);
+  EXPECT_GT(compacted, 500);
+  EXPECT_GT(dilated, 500);
+}
+
+TEST(CamClay, SlopeDropsToFlowingValueAfterFirstYield) {
+  const auto m = snow();
+  // Pure shear at p = p0/2 (the ellipse's widest point for beta = 0): admissible for M = 1.2
+  // if q < M p0 ... choose q between the M_s and M surfaces.
+  CamClayModel::State s;
+  s.volumetricPlasticStrain = float(m.initialVolumetricStrain());
+  const double p0 = m.preconsolidation(s.volumetricPlasticStrain);
+  const double centre = 0.5 * (1 - m.params.beta) * p0, ap = 0.5 * (1 + m.params.beta) * p0;
+  const double qMax = m.params.M * ap / std::sqrt(1 + 2 * m.params.beta);
+  const double K = m.elastic.bulk(), k = std::sqrt(1.5) * 2 * m.elastic.mu;
+  Vec3d eps = Vec3d::Constant(-centre / (3 * K)) + Vec3d(1, -1, 0) / std::sqrt(2.0) * (0.8 * qMax / k);
+  EXPECT_FALSE(m.project(eps, s)); // intact snow carries it
+  CamClayModel::State yielded = s;
+  yielded.yielded = 1;
+  EXPECT_TRUE(m.project(eps, yielded)); // flowing snow (M_s = 0.4) does not
+  EXPECT_LT(qOf(m, eps), 0.4 / 1.2 * qMax * 1.01);
+}
