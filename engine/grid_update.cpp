@@ -17,6 +17,7 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm) {
   }
   const bool walls = prm.domain.walls.type != BoundaryType::Open;
   const Vec3 dtg = prm.dt * prm.gravity;
+  const Real keep = Real(1) / (Real(1) + prm.damping * prm.dt);
 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.blockCount(), 16), [&](const auto& r) {
     for (size_t b = r.begin(); b != r.end(); ++b) {
@@ -34,7 +35,7 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm) {
           node.tail<3>().setZero();
           continue;
         }
-        Vec3 v = node.tail<3>() / node[0] + dtg;
+        Vec3 v = (node.tail<3>() / node[0] + dtg) * keep;
         if (ground && ground->phi[n] <= 0.f) {
           const Vec3 nrm(Real(ground->normal[n][0]), Real(ground->normal[n][1]), Real(ground->normal[n][2]));
           // Deep inside a narrow band the SDF is flat and has no normal: hold the node still.

@@ -9,6 +9,7 @@ namespace talus {
 struct GridUpdateParams {
   Real dt = 0;
   Vec3 gravity = Vec3::Zero();
+  Real damping = 0; ///< velocity damping rate (1/s), see SimulationSettings::damping
   DomainBox domain;                  ///< local frame
   bool hasTerrain = false;
   BoundaryCondition terrain;

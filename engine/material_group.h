@@ -61,8 +61,8 @@ public:
   virtual double stableDtLimit(double dx) const { return std::numeric_limits<double>::infinity(); }
   /// Called once per step with the merged G2P statistics of all groups.
   virtual void afterStep(const G2PStats&) {}
-  /// Puts particles [begin, end) in hydrostatic equilibrium below surfaceZ (fluids only).
-  virtual void setHydrostatic(size_t begin, size_t end, double surfaceZ, double g) {}
+  /// Called once before the first step: e.g. fluids start in hydrostatic equilibrium.
+  virtual void initialize(const Vec3d& gravity, double dx) {}
   /// Gather velocities for particles [begin, end), update deformation, stress and position.
   virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
 

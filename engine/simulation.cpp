@@ -32,6 +32,7 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
   int maxIndex = 0;
   for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
   massRemoved_.assign(size_t(maxIndex), 0.0);
+  for (auto* g : groupPtrs_) g->initialize(settings_.gravity, settings_.dx);
   initialMass_ = totalMass();
   for (auto* g : groupPtrs_)
     for (const Vec3& v : g->particles.v) maxSpeed_ = std::max(maxSpeed_, double(v.norm()));
@@ -76,8 +77,11 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.grid);
     GridUpdateParams prm;
     prm.dt = rdt;
-    const double ramp = settings_.gravityRamp > 0 ? std::min(1.0, (time_ + dt) / settings_.gravityRamp) : 1.0;
+    // Smooth (cosine) ramp: its residual ringing falls as (T / ramp)^2, a linear one's as T / ramp.
+    const double s = settings_.gravityRamp > 0 ? std::min(1.0, (time_ + dt) / settings_.gravityRamp) : 1.0;
+    const double ramp = 0.5 * (1 - std::cos(M_PI * s));
     prm.gravity = (ramp * settings_.gravity).cast<Real>();
+    prm.damping = Real(settings_.damping);
     prm.domain = settings_.domain;
     prm.hasTerrain = terrainCache_ != nullptr;
     prm.terrain = settings_.terrainBoundary;

@@ -19,9 +19,13 @@ struct SimulationSettings {
   double cfl = 0.4;                 ///< dt = cfl dx / (c_max + |v|_max)
   double maxDt = std::numeric_limits<double>::infinity();
   Vec3d gravity{0, 0, -9.81};
-  /// Gravity grows linearly from 0 to full over this time (s). Loading a body gradually lets it
-  /// reach its static stress state without the undamped elastic ringing a sudden load causes.
+  /// Gravity grows smoothly (1 - cos) from 0 to full over this time (s). Loading a body gradually
+  /// lets it reach its static stress state without the undamped ringing a sudden load causes.
   double gravityRamp = 0;
+  /// Grid velocity damping rate (1/s): v <- v / (1 + damping dt) every step. Dynamic relaxation
+  /// for reaching equilibrium states quasi-statically (a settled heap, a prestressed snowpack);
+  /// it removes momentum, so leave it at 0 for the dynamics themselves.
+  double damping = 0;
   Vec3d origin = Vec3d::Zero();     ///< world coordinates of the local frame's origin
   DomainBox domain;                 ///< local frame
   std::shared_ptr<const TerrainSdf> terrain; ///< optional ground

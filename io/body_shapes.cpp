@@ -1,6 +1,7 @@
 #include "io/body_shapes.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace talus {
@@ -20,6 +21,10 @@ public:
   }
   double volume() const override { return 8 * h_.prod(); }
   Vec3d centre() const override { return c_; }
+  double distance(const Vec3d& x) const override {
+    const Vec3d d = (R_.transpose() * (x - c_)).cwiseAbs() - h_;
+    return d.cwiseMax(0.0).norm() + std::min(d.maxCoeff(), 0.0);
+  }
 private:
   Vec3d c_, h_;
   Mat3d R_;
@@ -32,6 +37,7 @@ public:
   void bounds(Vec3d& lo, Vec3d& hi) const override { lo = c_.array() - r_, hi = c_.array() + r_; }
   double volume() const override { return 4.0 / 3.0 * M_PI * r_ * r_ * r_; }
   Vec3d centre() const override { return c_; }
+  double distance(const Vec3d& x) const override { return (x - c_).norm() - r_; }
 private:
   Vec3d c_;
   double r_;
@@ -53,6 +59,14 @@ public:
   }
   double volume() const override { return M_PI * r_ * r_ * (b_ - a_).norm(); }
   Vec3d centre() const override { return 0.5 * (a_ + b_); }
+  double distance(const Vec3d& x) const override {
+    const Vec3d ax = b_ - a_;
+    const double L = ax.norm();
+    const double t = (x - a_).dot(ax) / L; // along the axis, 0 at start
+    const double radial = (x - a_ - t / L * ax).norm() - r_;
+    const double axial = std::max(-t, t - L);
+    return std::hypot(std::max(radial, 0.0), std::max(axial, 0.0)) + std::min(std::max(radial, axial), 0.0);
+  }
 private:
   Vec3d a_, b_;
   double r_;
@@ -60,8 +74,8 @@ private:
 
 } // namespace
 
-std::unique_ptr<BodyShape> readBodyShape(const ConfigTable& t, const Vec3d& origin) {
-  const std::string shape = t.choice("shape", "", {"box", "sphere", "cylinder"});
+std::unique_ptr<BodyShape> readBodyShape(const ConfigTable& t, const Vec3d& origin, const std::string& key) {
+  const std::string shape = t.choice(key, "", {"box", "sphere", "cylinder"});
   if (shape == "box") {
     Mat3d R = Mat3d::Identity();
     if (t.has("rotation")) {

@@ -7,7 +7,6 @@
 #include <cpl_string.h>
 #include <gdal_priv.h>
 #include <mutex>
-#include <ogr_spatialref.h>
 #include <stdexcept>
 
 namespace talus {
@@ -23,19 +22,6 @@ std::string gdalError(const std::string& what) {
   return what + (msg && *msg ? std::string(": ") + msg : std::string());
 }
 } // namespace
-
-std::string crsToWkt(const std::string& userInput) {
-  OGRSpatialReference srs;
-  CPLPushErrorHandler(CPLQuietErrorHandler); // the message goes into the exception instead
-  const OGRErr err = srs.SetFromUserInput(userInput.c_str());
-  CPLPopErrorHandler();
-  if (err != OGRERR_NONE) throw std::runtime_error(gdalError("unrecognised CRS '" + userInput + "'"));
-  char* wkt = nullptr;
-  srs.exportToWkt(&wkt);
-  std::string out = wkt ? wkt : "";
-  CPLFree(wkt);
-  return out;
-}
 
 void writeGeoTiff(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
                   const GeoTiffBand& band) {

@@ -23,7 +23,4 @@ struct GeoTiffBand {
 void writeGeoTiff(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
                   const GeoTiffBand& band);
 
-/// WKT of a user CRS string ("EPSG:2056", a PROJ string or WKT); throws std::runtime_error.
-std::string crsToWkt(const std::string& userInput);
-
 } // namespace talus

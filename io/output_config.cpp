@@ -1,6 +1,6 @@
 #include "io/output_config.h"
 
-#include "io/geotiff_writer.h"
+#include "io/dem_raster.h"
 
 #include <algorithm>
 #include <cctype>

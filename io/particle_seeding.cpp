@@ -1,6 +1,7 @@
 #include "io/particle_seeding.h"
 
 #include <cmath>
+#include <tbb/parallel_for.h>
 
 namespace talus {
 
@@ -65,6 +66,54 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
           P.tau.push_back(Sym3{});
           P.mass.push_back(mass);
         }
+  group.resizeState(P.size());
+  return P.size() - before;
+}
+
+size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRange,
+                   const std::function<bool(const Vec3d&)>& inside,
+                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec, MaterialGroup& group,
+                   const Mat3d& velocityGradient) {
+  const Mat3 C0 = velocityGradient.cast<Real>();
+  const double dx = spec.dx;
+  const Real mass = Real(group.density() * dx * dx * dx / spec.particlesPerCell);
+  int64_t c0[2], c1[2];
+  for (int d = 0; d < 2; ++d) {
+    c0[d] = int64_t(std::floor(lo[d] / dx));
+    c1[d] = int64_t(std::ceil(hi[d] / dx));
+  }
+  const size_t rows = size_t(std::max<int64_t>(0, c1[0] - c0[0]));
+  // Per x-row of columns: positions and velocities, concatenated in row order afterwards.
+  std::vector<std::vector<Vec3>> xs(rows), vs(rows);
+  tbb::parallel_for(size_t(0), rows, [&](size_t r) {
+    const int64_t i = c0[0] + int64_t(r);
+    for (int64_t j = c0[1]; j < c1[1]; ++j) {
+      double zlo, zhi;
+      if (!columnRange(double(i) * dx, double(j) * dx, double(i + 1) * dx, double(j + 1) * dx, zlo, zhi)) continue;
+      const int64_t k0 = int64_t(std::floor(std::max(zlo, lo.z()) / dx));
+      const int64_t k1 = int64_t(std::ceil(std::min(zhi, hi.z()) / dx));
+      for (int64_t k = k0; k < k1; ++k)
+        for (int s = 0; s < spec.particlesPerCell; ++s) {
+          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
+          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
+          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          xs[r].push_back(x.cast<Real>());
+          vs[r].push_back(velocity(x).cast<Real>());
+        }
+    }
+  });
+  ParticleSet& P = group.particles;
+  const size_t before = P.size();
+  size_t total = before;
+  for (const auto& x : xs) total += x.size();
+  P.x.reserve(total), P.v.reserve(total), P.C.reserve(total), P.tau.reserve(total), P.mass.reserve(total);
+  for (size_t r = 0; r < rows; ++r) {
+    P.x.insert(P.x.end(), xs[r].begin(), xs[r].end());
+    P.v.insert(P.v.end(), vs[r].begin(), vs[r].end());
+  }
+  P.C.resize(total, C0);
+  P.tau.resize(total, Sym3{});
+  P.mass.resize(total, mass);
   group.resizeState(P.size());
   return P.size() - before;
 }

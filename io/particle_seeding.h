@@ -28,4 +28,18 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
                   MaterialGroup& group, const Mat3d& velocityGradient = Mat3d::Zero());
 
+/// z-range of a body over the column of cells [x0, x1] x [y0, y1] (local frame); false when the
+/// column holds none of it. May be conservative: `inside` decides each sample.
+using ColumnRange = std::function<bool(double x0, double y0, double x1, double y1, double& zlo, double& zhi)>;
+
+/// seedRegion for bodies lying on terrain: the same samples, masses and rules, but only the
+/// cells of each column that overlap its `columnRange` are visited, so a thin layer over a
+/// kilometre of relief costs what its volume costs. Columns are seeded in parallel (`inside`,
+/// `velocity` and spec.terrain must be thread-safe) and appended in a fixed order, so the
+/// result does not depend on the thread count.
+size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRange,
+                   const std::function<bool(const Vec3d&)>& inside,
+                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec, MaterialGroup& group,
+                   const Mat3d& velocityGradient = Mat3d::Zero());
+
 } // namespace talus

@@ -30,8 +30,12 @@ struct SceneSetup {
   int particlesPerCell = 8;
   OutputSettings output;
   std::vector<BodyReport> bodies;
-  /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS).
+  /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS):
+  /// the ground as simulated, i.e. after smoothing, with releases from a post-event DEM carved
+  /// out and fixed layers added.
   std::shared_ptr<const DemRaster> dem;
+  /// What the reader did that a user may want to know (terrain built or reused, cells filled).
+  std::vector<std::string> notes;
 };
 
 /// Reads every section, creates and seeds the material groups, and rejects unknown keys.

@@ -16,6 +16,8 @@
 #include "materials/hencky.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace talus {
 
@@ -55,6 +57,8 @@ struct CamClayModel {
 
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
+  static std::vector<std::string> stateScalarNames() { return {"yielded", "volumetric_plastic_strain"}; }
+  static float stateScalar(const State& s, size_t i) { return i == 0 ? float(s.yielded) : s.volumetricPlasticStrain; }
 
   /// Closest point (px, py) on the ellipse (x/A)^2 + (y/B)^2 = 1 to (x, y), x, y >= 0, outside.
   static void closestOnEllipse(double x, double y, double A, double B, double& px, double& py) {

@@ -14,14 +14,24 @@
 #include "materials/hencky.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace talus {
+
+/// How the cone q = gamma (p + c) is fitted to a Mohr-Coulomb friction angle phi.
+/// Compression (the paper's gamma = 6 sin phi / (3 - sin phi)) matches MC in triaxial compression;
+/// in plane-strain flow with this volume-preserving return, the out-of-plane stress settles at p
+/// and the cone acts like MC with sin(phi_eff) = gamma / sqrt(3) (phi = 30 deg acts like 44 deg).
+/// PlaneStrain (gamma = sqrt(3) sin phi) matches MC exactly in that case; Extension is the inner cone.
+enum class DruckerPragerCone { Compression, PlaneStrain, Extension };
 
 struct DruckerPragerParams {
   double frictionAngle = 30.0 * M_PI / 180;         ///< phi_ini (rad)
   double residualFrictionAngle = 30.0 * M_PI / 180; ///< phi_res (rad)
   double cohesion = 0;                              ///< c_ini (Pa, pressure units: tension tip at p = -c)
   double softening = 0;                             ///< chi
+  DruckerPragerCone cone = DruckerPragerCone::Compression;
 };
 
 struct DruckerPragerModel {
@@ -33,10 +43,24 @@ struct DruckerPragerModel {
   HenckyElasticity elastic;
   DruckerPragerParams params;
 
-  static double gammaOf(double phi) {
+  /// gamma(phi) of the cone fit, and d gamma / d phi.
+  static double gammaOf(double phi, DruckerPragerCone cone = DruckerPragerCone::Compression) {
     const double s = std::sin(phi);
-    return 6 * s / (3 - s);
+    switch (cone) {
+    case DruckerPragerCone::PlaneStrain: return std::sqrt(3.0) * s;
+    case DruckerPragerCone::Extension: return 6 * s / (3 + s);
+    default: return 6 * s / (3 - s);
+    }
   }
+  static double gammaSlope(double phi, DruckerPragerCone cone) {
+    const double s = std::sin(phi), c = std::cos(phi);
+    switch (cone) {
+    case DruckerPragerCone::PlaneStrain: return std::sqrt(3.0) * c;
+    case DruckerPragerCone::Extension: return 18 * c / ((3 + s) * (3 + s));
+    default: return 18 * c / ((3 - s) * (3 - s));
+    }
+  }
+  double gamma(double e) const { return gammaOf(frictionAngle(e), params.cone); }
   double frictionAngle(double e) const {
     return params.residualFrictionAngle + (params.frictionAngle - params.residualFrictionAngle) * std::exp(-params.softening * e);
   }
@@ -47,11 +71,13 @@ struct DruckerPragerModel {
     const double tr = eps.sum();
     const double p = -elastic.bulk() * tr;
     const double q = std::sqrt(1.5) * 2 * elastic.mu * (eps - Vec3d::Constant(tr / 3)).norm();
-    return q - gammaOf(frictionAngle(e)) * (p + cohesion(e));
+    return q - gamma(e) * (p + cohesion(e));
   }
 
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
+  static std::vector<std::string> stateScalarNames() { return {"plastic_strain"}; }
+  static float stateScalar(const State& s, size_t) { return s.plasticStrain; }
 
   /// Return mapping; true when eps was changed (plastic step).
   bool project(Vec3d& eps, State& s) const {
@@ -60,7 +86,7 @@ struct DruckerPragerModel {
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);
     const double a = dev.norm(); // |dev eps|, q = k a
     const double e0 = s.plasticStrain;
-    if (k * a - gammaOf(frictionAngle(e0)) * (p + cohesion(e0)) <= 0) return false;
+    if (k * a - gamma(e0) * (p + cohesion(e0)) <= 0) return false;
 
     // Beyond the tip even once all deviatoric strain is removed: go to the tip.
     if (p + cohesion(e0 + a) <= 0) {
@@ -71,8 +97,8 @@ struct DruckerPragerModel {
     // h(d) = k (a - d) - gamma(e0 + d) (p + c(e0 + d)): h(0) > 0 >= h(a); find its root.
     auto h = [&](double d, double& dh) {
       const double e = e0 + d, phi = frictionAngle(e), c = cohesion(e);
-      const double sphi = std::sin(phi), g = 6 * sphi / (3 - sphi);
-      const double dg = 18 * std::cos(phi) / ((3 - sphi) * (3 - sphi)) *
+      const double g = gammaOf(phi, params.cone);
+      const double dg = gammaSlope(phi, params.cone) *
                         (-params.softening * (params.frictionAngle - params.residualFrictionAngle) *
                          std::exp(-params.softening * e));
       const double dc = -params.softening * c;
@@ -81,7 +107,7 @@ struct DruckerPragerModel {
     };
     double lo = 0, hi = a, dh;
     // Start from the explicit return (exact when chi = 0).
-    double d = std::clamp(a - gammaOf(frictionAngle(e0)) * (p + cohesion(e0)) / k, 0.0, a);
+    double d = std::clamp(a - gamma(e0) * (p + cohesion(e0)) / k, 0.0, a);
     for (int it = 0; it < 60; ++it) {
       const double f = h(d, dh);
       if (std::abs(f) <= 1e-12 * k * a) break;

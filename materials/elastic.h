@@ -3,6 +3,9 @@
 
 #include "materials/hencky.h"
 
+#include <string>
+#include <vector>
+
 namespace talus {
 
 struct ElasticModel {
@@ -14,6 +17,8 @@ struct ElasticModel {
   bool project(Vec3d&, State&) const { return false; }
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
+  static std::vector<std::string> stateScalarNames() { return {}; }
+  static float stateScalar(const State&, size_t) { return 0; }
 };
 
 } // namespace talus

@@ -5,6 +5,9 @@
 #include "engine/transfer_g2p.h"
 #include "materials/tait_water.h"
 
+#include <cmath>
+#include <unordered_map>
+
 namespace talus {
 
 class FluidGroup final : public MaterialGroup {
@@ -33,10 +36,25 @@ public:
   }
   void afterStep(const G2PStats& stats) override { minJ_ = std::max(0.5f, std::min(1.0f, stats.minFluidJ)); }
 
-  /// Water at rest: J and stress of the hydrostatic pressure rho0 |g| (surface - z) per particle.
-  void setHydrostatic(size_t begin, size_t end, double surfaceZ, double g) override {
-    for (size_t p = begin; p < end; ++p) {
-      const double depth = std::max(0.0, surfaceZ - double(particles.x[p].z()));
+  bool hydrostatic = true; ///< start at rest under hydrostatic pressure (gravity along -z)
+
+  /// Water at rest: every particle gets the J and stress of the hydrostatic pressure at its
+  /// depth below the top of its own water column (columns dx wide, surface half a particle
+  /// spacing above the highest particle), so reservoirs and dam-break columns start still.
+  void initialize(const Vec3d& gravity, double dx) override {
+    const double g = -gravity.z();
+    if (!hydrostatic || !(g > 0) || particles.size() == 0) return;
+    std::unordered_map<uint64_t, double> top;
+    auto key = [&](const Vec3& x) {
+      return (uint64_t(uint32_t(int32_t(std::floor(x.x() / dx)))) << 32) | uint32_t(int32_t(std::floor(x.y() / dx)));
+    };
+    for (const Vec3& x : particles.x) {
+      auto [it, fresh] = top.try_emplace(key(x), double(x.z()));
+      if (!fresh) it->second = std::max(it->second, double(x.z()));
+    }
+    for (size_t p = 0; p < particles.size(); ++p) {
+      const double spacing = std::cbrt(double(particles.mass[p]) / density());
+      const double depth = top[key(particles.x[p])] + 0.5 * spacing - double(particles.x[p].z());
       const double Jp = model.restJ(density() * g * depth);
       dJ[p] = float(Jp - 1);
       particles.tau[p] = Sym3::fromMatrix(Mat3d::Identity() * (-Jp * model.pressureOfStrain(dJ[p])));

@@ -99,6 +99,10 @@ std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int ind
     m.params.residualFrictionAngle = r.angle("residual_friction_angle", m.params.frictionAngle * 180 / M_PI);
     m.params.cohesion = r.nonNegative("cohesion", 0.0);
     m.params.softening = r.nonNegative("softening", 0.0);
+    const std::string cone = t.choice("cone", "compression", {"compression", "plane_strain", "extension"});
+    m.params.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
+                    : cone == "extension"  ? DruckerPragerCone::Extension
+                                           : DruckerPragerCone::Compression;
     return std::make_unique<SolidGroup<DruckerPragerModel>>(name, index, density, m);
   }
   if (model == "cam_clay") {
@@ -125,7 +129,9 @@ std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int ind
   }
   m.viscosity = r.nonNegative("viscosity", 0.0);
   m.maxTension = r.get("max_tension", 0.0, 0, m.bulk, false, true);
-  return std::make_unique<FluidGroup>(name, index, density, m);
+  auto g = std::make_unique<FluidGroup>(name, index, density, m);
+  g->hydrostatic = t.boolean("hydrostatic", true);
+  return g;
 }
 
 } // namespace talus

@@ -41,6 +41,25 @@ public:
     F.resize(n, Mat3::Identity());
     state.resize(n, initialState);
   }
+  /// "pressure" (Cauchy, Pa, compression positive) and the model's own state variables.
+  std::vector<std::string> scalarNames() const override {
+    std::vector<std::string> n{"pressure"};
+    for (const auto& s : Model::stateScalarNames()) n.push_back(s);
+    return n;
+  }
+  void scalar(const std::string& name, std::vector<float>& out) const override {
+    out.assign(size(), 0.0f);
+    if (name == "pressure") {
+      for (size_t i = 0; i < size(); ++i)
+        out[i] = float(-particles.tau[i].trace() / (3.0 * double(F[i].determinant())));
+      return;
+    }
+    const auto names = Model::stateScalarNames();
+    for (size_t k = 0; k < names.size(); ++k)
+      if (names[k] == name)
+        for (size_t i = 0; i < size(); ++i) out[i] = Model::stateScalar(state[i], k);
+  }
+
   size_t stateBytesPerParticle() const override {
     return sizeof(Mat3) + sizeof(typename Model::State);
   }

@@ -27,8 +27,10 @@ double stressScale(const DruckerPragerModel& m, const Vec3d& eps) {
 TEST(DruckerPrager, ReturnLandsOnTheSurfaceKeepsAdmissibleStatesAndIsIdempotent) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> strain(-0.05, 0.05), unit(0, 1);
-  const DruckerPragerModel models[] = {makeModel(30, 30, 0, 0), makeModel(42, 36, 2e6, 1e10),
-                                       makeModel(50, 30, 1e5, 20), makeModel(40, 25, 1e6, 3)};
+  DruckerPragerModel models[] = {makeModel(30, 30, 0, 0), makeModel(42, 36, 2e6, 1e10), makeModel(50, 30, 1e5, 20),
+                                 makeModel(40, 25, 1e6, 3), makeModel(35, 20, 5e5, 10)};
+  models[3].params.cone = DruckerPragerCone::PlaneStrain;
+  models[4].params.cone = DruckerPragerCone::Extension;
   int plastic = 0, elastic = 0, tip = 0;
   for (const auto& m : models)
     for (int t = 0; t < 20000; ++t) {

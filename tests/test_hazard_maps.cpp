@@ -1,6 +1,6 @@
 // Hazard maps: GeoTIFFs on the DEM's grid and CRS that gdalinfo reads, with values checked
 // against a slab of known thickness moving at a known speed over a known slope.
-#include "io/geotiff_writer.h"
+#include "io/dem_raster.h"
 #include "io/hazard_maps.h"
 #include "io/run_driver.h"
 #include "test_support.h"

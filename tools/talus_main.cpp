@@ -1,9 +1,11 @@
 // The `talus` command line: run scenes, check them, and (later) prepare terrain and benchmarks.
 #include "engine/input_error.h"
+#include "io/dem_raster.h"
 #include "io/run_driver.h"
 #include "io/scene.h"
 #include "io/toml_reader.h"
 #include "tools/benchmark.h"
+#include "tools/terrain_command.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -21,6 +23,8 @@ SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) 
 int cmdRun(const std::string& scene, const std::string& out, int threads, const std::vector<std::string>& sets,
            bool quiet) {
   SceneSetup setup = load(scene, sets);
+  if (!quiet)
+    for (const auto& n : setup.notes) std::fprintf(stderr, "talus: %s\n", n.c_str());
   RunOptions opt;
   opt.outDir = out;
   opt.threads = threads;
@@ -42,6 +46,7 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
 int cmdCheck(const std::string& scene, const std::vector<std::string>& sets) {
   SceneSetup s = load(scene, sets);
   std::printf("%s: ok\n", s.file.c_str());
+  for (const auto& n : s.notes) std::printf("  %s\n", n.c_str());
   for (const auto& b : s.bodies)
     std::printf("  %-16s %-10s %-8s %9zu particles, seeded %.6g m3 / geometric %.6g m3\n", b.label.c_str(),
                 b.material.c_str(), b.kind.c_str(), b.particles, b.seededVolume, b.geometricVolume);
@@ -78,15 +83,25 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
   benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
 
+  TerrainCommandOptions terrainOpt;
+  auto* terrainCmd = addTerrainCommand(app, terrainOpt);
+  SynthDemOptions synthOpt;
+  auto* synthCmd = addSynthDemCommand(app, synthOpt);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) return cmdRun(scene, out, threads, sets, quiet);
     if (*check) return cmdCheck(scene, sets);
     if (*benchCmd) return runBenchmarks(bench);
+    if (*terrainCmd) return runTerrainCommand(terrainOpt);
+    if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*defaults) {
       std::cout << defaultSceneText();
       return 0;
     }
+  } catch (const DemError& e) { // bad terrain input: same status as a bad scene
+    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 2;
