@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/particle_set.h"
+#include "engine/state_archive.h"
 #include "engine/types.h"
 
 #include <algorithm>
@@ -72,6 +73,26 @@ public:
   /// Initialise model state for particles appended to `particles` (undeformed, unyielded).
   virtual void resizeState(size_t n) = 0;
   virtual size_t stateBytesPerParticle() const = 0;
+
+  /// Checkpointing: every array, bit for bit, under names prefixed by `prefix`.
+  void save(StateArchive& a, const std::string& prefix) const {
+    a.putVector(prefix + "x", particles.x);
+    a.putVector(prefix + "v", particles.v);
+    a.putVector(prefix + "C", particles.C);
+    a.putVector(prefix + "tau", particles.tau);
+    a.putVector(prefix + "mass", particles.mass);
+    saveState(a, prefix);
+  }
+  void load(const StateArchive& a, const std::string& prefix) {
+    a.getVector(prefix + "x", particles.x);
+    a.getVector(prefix + "v", particles.v);
+    a.getVector(prefix + "C", particles.C);
+    a.getVector(prefix + "tau", particles.tau);
+    a.getVector(prefix + "mass", particles.mass);
+    loadState(a, prefix);
+  }
+  virtual void saveState(StateArchive& a, const std::string& prefix) const = 0;
+  virtual void loadState(const StateArchive& a, const std::string& prefix) = 0;
 
   /// Optional per-particle scalar outputs of the model (e.g. plastic strain, pressure).
   virtual std::vector<std::string> scalarNames() const { return {}; }

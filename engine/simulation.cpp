@@ -232,3 +232,48 @@ size_t Simulation::gridBytes() const {
 }
 
 } // namespace talus
+
+namespace talus {
+
+void Simulation::save(StateArchive& a) const {
+  a.putValue("format_version", int32_t(1));
+  a.putValue("real_bytes", int32_t(sizeof(Real)));
+  a.putValue("time", time_);
+  a.putValue("steps", steps_);
+  a.putValue("particle_steps", particleSteps_);
+  a.putValue("max_speed", maxSpeed_);
+  a.putValue("initial_mass", initialMass_);
+  a.putVector("mass_removed", massRemoved_);
+  a.putValue("groups", int32_t(groupPtrs_.size()));
+  for (size_t i = 0; i < groupPtrs_.size(); ++i) {
+    const std::string p = "group" + std::to_string(i) + "/";
+    const std::string id = groupPtrs_[i]->name() + "|" + groupPtrs_[i]->modelName();
+    a.put(p + "id", id.data(), id.size());
+    groupPtrs_[i]->save(a, p);
+  }
+}
+
+void Simulation::load(const StateArchive& a) {
+  if (a.getValue<int32_t>("format_version") != 1) throw std::runtime_error("unknown checkpoint format");
+  if (a.getValue<int32_t>("real_bytes") != int32_t(sizeof(Real)))
+    throw std::runtime_error("checkpoint was written by a build with a different precision");
+  if (a.getValue<int32_t>("groups") != int32_t(groupPtrs_.size()))
+    throw std::runtime_error("checkpoint holds a different number of materials than the scene");
+  for (size_t i = 0; i < groupPtrs_.size(); ++i) {
+    const std::string p = "group" + std::to_string(i) + "/";
+    std::string id(a.size(p + "id"), ' ');
+    a.get(p + "id", id.data(), id.size());
+    const std::string want = groupPtrs_[i]->name() + "|" + groupPtrs_[i]->modelName();
+    if (id != want)
+      throw std::runtime_error("checkpoint material " + std::to_string(i) + " is '" + id + "', the scene has '" + want + "'");
+    groupPtrs_[i]->load(a, p);
+  }
+  time_ = a.getValue<double>("time");
+  steps_ = a.getValue<uint64_t>("steps");
+  particleSteps_ = a.getValue<uint64_t>("particle_steps");
+  maxSpeed_ = a.getValue<double>("max_speed");
+  initialMass_ = a.getValue<double>("initial_mass");
+  a.getVector("mass_removed", massRemoved_);
+}
+
+} // namespace talus

@@ -4,6 +4,7 @@
 #include "engine/boundary.h"
 #include "engine/material_group.h"
 #include "engine/sparse_grid.h"
+#include "engine/state_archive.h"
 #include "engine/terrain.h"
 
 #include <functional>
@@ -85,8 +86,11 @@ public:
   size_t particleBytes() const;
   size_t gridBytes() const;
 
-  /// Restore clock and counters (checkpoint restart).
-  void setClock(double time, uint64_t steps) { time_ = time, steps_ = steps; }
+  /// Everything needed to continue the run bit for bit: clock, counters, speeds, mass ledger and
+  /// every group's particles and model state (groups are matched by name and model).
+  void save(StateArchive& a) const;
+  /// Restores a state written by save() into a simulation built from the same scene.
+  void load(const StateArchive& a);
 
 private:
   void cullEscaped();

@@ -61,6 +61,15 @@ public:
     }
   }
 
+  void saveState(StateArchive& a, const std::string& prefix) const override {
+    a.putVector(prefix + "dJ", dJ);
+    a.putValue(prefix + "minJ", minJ_);
+  }
+  void loadState(const StateArchive& a, const std::string& prefix) override {
+    a.getVector(prefix + "dJ", dJ);
+    minJ_ = a.getValue<float>(prefix + "minJ");
+  }
+
   void permuteState(const std::vector<uint32_t>& perm) override { gatherInPlace(dJ, perm); }
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }
   void resizeState(size_t n) override { dJ.resize(n, 0.0f); }

@@ -29,6 +29,15 @@ public:
     });
   }
 
+  void saveState(StateArchive& a, const std::string& prefix) const override {
+    a.putVector(prefix + "F", F);
+    a.putVector(prefix + "state", state);
+  }
+  void loadState(const StateArchive& a, const std::string& prefix) override {
+    a.getVector(prefix + "F", F);
+    a.getVector(prefix + "state", state);
+  }
+
   void permuteState(const std::vector<uint32_t>& perm) override {
     gatherInPlace(F, perm);
     gatherInPlace(state, perm);
