@@ -79,6 +79,7 @@ size_t countNodata(const DemRaster& dem) {
 DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t* filledCells) {
   if (filledCells) *filledCells = 0;
   if (!std::filesystem::exists(path)) throw DemError(path + ": file not found");
+  if (!std::filesystem::is_regular_file(path)) throw DemError(path + ": not a regular file");
   GDALAllRegister();
   QuietGdal quiet;
   DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));

@@ -1,5 +1,9 @@
 #include "io/particle_seeding.h"
 
+#include "io/resource_limits.h"
+
+#include <string>
+
 #include <cmath>
 #include <tbb/parallel_for.h>
 
@@ -53,6 +57,10 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
   }
   ParticleSet& P = group.particles;
   const size_t before = P.size();
+  const double candidates = double(c1[0] - c0[0]) * double(c1[1] - c0[1]) * double(c1[2] - c0[2]) * spec.particlesPerCell;
+  if (candidates > spec.maxParticles)
+    throw ResourceLimitError("would test " + std::to_string(candidates) + " particle positions, more than max_particles = " +
+                             std::to_string(spec.maxParticles) + " (is dx too small?)");
   for (int64_t i = c0[0]; i < c1[0]; ++i)
     for (int64_t j = c0[1]; j < c1[1]; ++j)
       for (int64_t k = c0[2]; k < c1[2]; ++k)
@@ -83,6 +91,11 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
     c1[d] = int64_t(std::ceil(hi[d] / dx));
   }
   const size_t rows = size_t(std::max<int64_t>(0, c1[0] - c0[0]));
+  const double columns = double(rows) * double(std::max<int64_t>(0, c1[1] - c0[1]));
+  if (columns * spec.particlesPerCell > spec.maxParticles)
+    throw ResourceLimitError("would seed at least " + std::to_string(columns * spec.particlesPerCell) +
+                             " particles, more than max_particles = " + std::to_string(spec.maxParticles) +
+                             " (is dx too small?)");
   // Per x-row of columns: positions and velocities, concatenated in row order afterwards.
   std::vector<std::vector<Vec3>> xs(rows), vs(rows);
   tbb::parallel_for(size_t(0), rows, [&](size_t r) {

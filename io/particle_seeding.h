@@ -14,6 +14,7 @@ struct SeedSpec {
   double jitter = 0;         ///< lattice jitter as a fraction of the sub-cell spacing, [0, 1]
   uint64_t seed = 0;
   const TerrainSdf* terrain = nullptr; ///< samples inside the ground are skipped
+  double maxParticles = 2e9;           ///< refuse (ResourceLimitError) to seed more than this
 };
 
 /// Sample offsets inside a unit cell: a lattice when particles_per_cell is a cube (1, 8, 27...),

@@ -25,6 +25,7 @@ struct DatasetCloser {
 
 PolygonSet PolygonSet::read(const std::string& path, const std::string& attribute, const std::string& layerName) {
   if (!std::filesystem::exists(path)) throw DemError(path + ": file not found");
+  if (!std::filesystem::is_regular_file(path)) throw DemError(path + ": not a regular file");
   GDALAllRegister();
   QuietGdal quiet;
   std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));

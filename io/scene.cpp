@@ -3,6 +3,7 @@
 #include "engine/union_terrain.h"
 #include "io/body_shapes.h"
 #include "io/particle_seeding.h"
+#include "io/resource_limits.h"
 #include "io/terrain_bodies.h"
 #include "io/terrain_loader.h"
 #include "io/toml_reader.h"
@@ -52,6 +53,7 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.settings.maxDt = sim->positive("max_dt", std::numeric_limits<double>::infinity());
   s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
   s.settings.damping = sim->positive("damping", 0, true);
+  s.maxParticles = std::min(sim->positive("max_particles", 2e9), resourceLimits().maxParticles);
 }
 
 /// `[domain]` may be omitted (or give only walls/origin) for a DEM terrain: the box then spans
@@ -192,10 +194,15 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     list.push_back(terrainBodies[i].get());
   }
   std::shared_ptr<DemRaster> bed;
-  if (dem) buildDemTerrain(*root.table("terrain"), *dem, list, s, bed);
-  else readTerrain(root, s);
+  try {
+    if (dem) buildDemTerrain(*root.table("terrain"), *dem, list, s, bed);
+    else readTerrain(root, s);
+  } catch (const ResourceLimitError& e) {
+    root.table("terrain")->fail("", e.what());
+  }
 
   SeedSpec spec;
+  spec.maxParticles = s.maxParticles;
   spec.dx = s.settings.dx;
   spec.particlesPerCell = s.particlesPerCell;
   spec.seed = seed;
@@ -214,7 +221,12 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     if (const TerrainBody* tb = terrainBodies[i].get()) {
       std::string material;
       MaterialGroup* group = tb->kind() == TerrainBody::Kind::Fixed ? nullptr : findGroup(t, s, material);
-      BodyReport rep = tb->seed(*bedField, terrainSpec, s.settings.origin, worldMin, worldMax, group, seeded);
+      BodyReport rep;
+      try {
+        rep = tb->seed(*bedField, terrainSpec, s.settings.origin, worldMin, worldMax, group, seeded);
+      } catch (const ResourceLimitError& e) {
+        t.fail("", e.what());
+      }
       seeded.push_back(tb);
       rep.label = label;
       s.bodies.push_back(rep);
@@ -233,9 +245,13 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     const Vec3d v0 = t.vec3("velocity", Vec3d::Zero());
     const Vec3d omega = t.vec3("angular_velocity", Vec3d::Zero());
     const Vec3d c = shape->centre();
-    rep.particles = seedRegion(
-        lo, hi, [&](const Vec3d& x) { return shape->contains(x); },
-        [&](const Vec3d& x) { return Vec3d(v0 + omega.cross(x - c)); }, spec, *group, skew(omega));
+    try {
+      rep.particles = seedRegion(
+          lo, hi, [&](const Vec3d& x) { return shape->contains(x); },
+          [&](const Vec3d& x) { return Vec3d(v0 + omega.cross(x - c)); }, spec, *group, skew(omega));
+    } catch (const ResourceLimitError& e) {
+      t.fail("", e.what());
+    }
     if (rep.particles == 0) t.fail("shape", "body holds no particle (smaller than a cell, or inside the terrain)");
     rep.seededVolume = double(rep.particles) * std::pow(spec.dx, 3) / spec.particlesPerCell;
     rep.geometricVolume = shape->volume();

@@ -28,6 +28,7 @@ struct SceneSetup {
   std::vector<std::string> materialNames;
   double endTime = 1;
   int particlesPerCell = 8;
+  double maxParticles = 2e9; ///< [simulation] max_particles, capped by resourceLimits()
   OutputSettings output;
   std::vector<BodyReport> bodies;
   /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS):

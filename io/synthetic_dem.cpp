@@ -1,5 +1,7 @@
 #include "io/synthetic_dem.h"
 
+#include "io/resource_limits.h"
+
 #include "io/dem_raster.h"
 
 #include <algorithm>
@@ -239,7 +241,8 @@ DemRaster makeSyntheticDem(const ConfigTable& t) {
   }
   const int nx = int(std::lround(Lx / cell)), ny = int(std::lround(Ly / cell));
   if (nx < 2 || ny < 2) t.fail("cell_size", "the DEM must be at least 2 x 2 cells");
-  if (double(nx) * double(ny) > 4e8) t.fail("cell_size", "more than 4e8 cells: use a coarser cell_size");
+  if (double(nx) * double(ny) > resourceLimits().maxRasterCells)
+    t.fail("cell_size", "more than " + std::to_string(resourceLimits().maxRasterCells) + " cells: use a coarser cell_size");
   std::vector<double> origin{2600000.0, 1200000.0};
   if (t.has("origin")) {
     origin = t.numbers("origin");

@@ -34,6 +34,7 @@ std::shared_ptr<const TerrainSdf> loadTerrain(const ConfigTable& t, const Simula
   }
   const std::string file = resolveScenePath(t.file(), t.string("sdf"));
   if (!fs::exists(file)) t.fail("sdf", "file not found: " + file);
+  if (!fs::is_regular_file(file)) t.fail("sdf", "not a regular file: " + file);
   try {
     return std::make_shared<LevelSetTerrain>(file, t.string("grid", ""), s.origin);
   } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #include "io/toml_reader.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
@@ -57,6 +58,8 @@ std::shared_ptr<ConfigTable> parse(const std::string& text, const std::string& n
 } // namespace
 
 std::shared_ptr<ConfigTable> readTomlFile(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path, 0, "", std::filesystem::exists(path) ? "not a regular file" : "scene file not found");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open scene file");
   std::ostringstream s;

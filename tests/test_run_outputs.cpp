@@ -32,7 +32,7 @@ TEST(RunOutputs, ParticlesH5AndSummaryJsonDescribeTheFinalState) {
   h5::readDataset<float>(f, "/particles/velocity", rows, cols);
   EXPECT_EQ(cols, 3u);
   EXPECT_NEAR(h5::readDoubleAttribute(f, "time"), 0.05, 1e-12);
-  EXPECT_EQ(h5::readStringsAttribute(f, "material_names"), std::vector<std::string>{"rubber"});
+  EXPECT_EQ(h5::readStringsAttribute(f, "material_names"), (std::vector<std::string>{"rock", "snow"}));
   for (int frame = 0; frame < 3; ++frame) {
     char name[64];
     std::snprintf(name, sizeof name, "/frames/particles_%05d.h5", frame);

@@ -111,3 +111,15 @@ TEST(SceneInput, MissingTerrainFileIsNamed) {
 TEST(SceneInput, BadOverrideIsNamed) {
   expectError(kGood, 0, "materials.granite.density", "no element 'granite'", {"materials.granite.density=1"});
 }
+
+TEST(SceneInput, ATinyGridSpacingIsRefusedBeforeSeedingBillionsOfParticles) {
+  expectError(replace(kGood, "dx = 0.1", "dx = 1e-5"), 13, "bodies[0]", "max_particles");
+  // The limit is a scene key too.
+  expectError(std::string(kGood), 13, "bodies[0]", "max_particles", {"simulation.max_particles=100"});
+}
+
+TEST(SceneInput, FrictionAnglesOutsideZeroToNinetyAreRefused) {
+  const std::string dp = replace(replace(kGood, "model = \"elastic\"", "model = \"drucker_prager\"\nfriction_angle = 95"),
+                                 "poisson_ratio = 0.25", "poisson_ratio = 0.25");
+  expectError(dp, 10, "materials[0].friction_angle", "(0, 90)");
+}

@@ -2,7 +2,9 @@
 # Talus set-up on Debian 12: install the Debian packages Talus needs, build, then either run the
 # embedded default scene (`demo`, the default) or the test suite (`test`).
 #   bash tools/setup.sh          # install, build, run the default scene into ./talus_out
-#   bash tools/setup.sh test     # install, build, run the tests
+#   bash tools/setup.sh test     # install, build, run the tests, then the sanitized tests and the
+#                                # scene-reader fuzzer (what CI runs)
+#   bash tools/setup.sh quick    # install, build, run the tests only
 set -euo pipefail
 
 mode="${1:-demo}"
@@ -14,6 +16,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
   libhdf5-dev libgtest-dev libtomlplusplus-dev libcli11-dev
   libgdal-dev gdal-bin libcairo2-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()
@@ -32,17 +35,40 @@ jobs="$(nproc)"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$jobs"
 
+sanitized_checks() {
+  # ASan + UBSan build (clang) of the libraries, the test suite and the libFuzzer target.
+  local san="${TALUS_SANITIZE_BUILD_DIR:-$root/build-san}"
+  CC=clang CXX=clang++ cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DTALUS_SANITIZE=ON -DTALUS_FUZZ=ON >/dev/null
+  cmake --build "$san" -j "$jobs"
+  # The long physics validations repeat kernels the other tests already run under the
+  # sanitizers; skipping them keeps CI inside its budget.
+  ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir "$san" --output-on-failure -j "$jobs" --timeout 1200 \
+    -E "ColumnCollapse|Heap\.|DamBreak|WaterColumn|SnowSlab|Determinism"
+  local corpus
+  corpus="$(mktemp -d)"
+  cp "$root"/tests/fuzz/seeds/*.toml "$root"/data/scenes/*.toml "$corpus"/
+  ASAN_OPTIONS=detect_leaks=0 "$san/tests/fuzz/talus_scene_fuzzer" "$corpus" \
+    -max_total_time="${TALUS_FUZZ_SECONDS:-90}" -rss_limit_mb=3072 -timeout=30 -print_final_stats=1
+  rm -rf "$corpus"
+}
+
 case "$mode" in
   demo)
     "$build/tools/talus" run --out "${TALUS_OUT:-$root/talus_out}"
     ;;
   test)
     ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 1200
+    sanitized_checks
+    ;;
+  quick)
+    ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 1200
     ;;
   build)
     ;;
   *)
-    echo "usage: tools/setup.sh [demo|test|build]" >&2
+    echo "usage: tools/setup.sh [demo|test|quick|build]" >&2
     exit 2
     ;;
 esac
