@@ -1,5 +1,6 @@
 #include "io/run_driver.h"
 
+#include "io/output_set.h"
 #include "io/particle_writer.h"
 #include "io/progress_bar.h"
 #include "io/run_summary.h"
@@ -13,26 +14,20 @@
 
 namespace talus {
 
-namespace {
-std::string framePath(const std::string& dir, int frame) {
-  char name[64];
-  std::snprintf(name, sizeof name, "particles_%05d.h5", frame);
-  return (std::filesystem::path(dir) / "frames" / name).string();
-}
-} // namespace
-
 RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
+  namespace fs = std::filesystem;
   RunResult res;
   res.outDir = opt.outDir.empty() ? scene.output.directory : opt.outDir;
-  std::filesystem::create_directories(res.outDir);
+  fs::create_directories(res.outDir);
   const int threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   Simulation sim(scene.settings, std::move(scene.groups));
+  OutputSet outputs(scene, res.outDir); // only what [output] asks for
   const double interval = scene.output.frameInterval;
-  if (interval > 0) std::filesystem::create_directories(std::filesystem::path(res.outDir) / "frames");
   int frame = 0;
-  if (interval > 0) writeParticlesH5(framePath(res.outDir, frame++), sim, scene.materialNames);
+  outputs.start(sim);
+  if (interval > 0) outputs.frame(sim, frame++);
 
   ProgressBar bar(scene.endTime, stderr, opt.progress);
   const auto t0 = std::chrono::steady_clock::now();
@@ -42,10 +37,15 @@ RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
   info.materialNames = scene.materialNames;
   try {
     while (sim.time() < scene.endTime) {
-      const double next = interval > 0 ? std::min(scene.endTime, frame * interval) : scene.endTime;
-      sim.advanceTo(next, [&] { bar.update(sim.time(), sim.steps(), sim.particleSteps()); });
-      if (interval > 0 && next == frame * interval)
-        writeParticlesH5(framePath(res.outDir, frame++), sim, scene.materialNames);
+      const double frameTime = frame * interval;
+      const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
+      sim.advanceTo(next, [&] {
+        outputs.step(sim);
+        bar.update(sim.time(), sim.steps(), sim.particleSteps());
+      });
+      // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
+      // rounding of it.
+      if (interval > 0 && next >= frameTime - 1e-9 * interval) outputs.frame(sim, frame++);
     }
   } catch (const NumericalError& e) {
     res.ok = false;
@@ -53,10 +53,12 @@ RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
     info.status = std::string("failed: ") + e.what();
   }
   bar.finish();
+  outputs.finish(sim, res.ok);
   res.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   info.wallSeconds = res.wallSeconds;
-  if (res.ok) writeParticlesH5((std::filesystem::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
-  writeSummaryJson((std::filesystem::path(res.outDir) / "summary.json").string(), sim, info);
+  info.outputs = outputs.reports();
+  if (res.ok) writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
+  writeSummaryJson((fs::path(res.outDir) / "summary.json").string(), sim, info);
   return res;
 }
 

@@ -77,6 +77,17 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
       << (g->size() ? vec(lo) : "null") << ", \"bbox_max\": " << (g->size() ? vec(hi) : "null") << "}";
     first = false;
   }
+  j << "\n  ],\n";
+  // What each requested output cost and wrote, so a user sees what maps or frames cost.
+  j << "  \"outputs\": [";
+  first = true;
+  for (const OutputReport& o : info.outputs) {
+    j << (first ? "\n" : ",\n") << "    {\"name\": " << jsonString(o.name) << ", \"seconds\": " << num(o.seconds)
+      << ", \"files\": [";
+    for (size_t i = 0; i < o.files.size(); ++i) j << (i ? ", " : "") << jsonString(o.files[i]);
+    j << "]}";
+    first = false;
+  }
   j << "\n  ]\n}\n";
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp);

@@ -8,12 +8,20 @@
 
 namespace talus {
 
+/// Wall time one output took over the run and the files it wrote (relative to the output dir).
+struct OutputReport {
+  std::string name;
+  double seconds = 0;
+  std::vector<std::string> files;
+};
+
 struct RunInfo {
   std::string scene;
   double wallSeconds = 0;
   int threads = 1;
   std::vector<std::string> materialNames;
   std::string status = "completed"; ///< or "failed: ..." when a guard stopped the run
+  std::vector<OutputReport> outputs;
 };
 
 void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);

@@ -260,10 +260,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
 }
 
 void readOutput(const ConfigTable& root, SceneSetup& s) {
-  const ConfigTable* out = root.table("output");
-  if (!out) return;
-  s.output.directory = out->string("directory", s.output.directory);
-  s.output.frameInterval = out->positive("frame_interval", 0, true);
+  s.output = readOutputSettings(root.table("output"), s.materialNames);
 }
 
 } // namespace

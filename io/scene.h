@@ -3,6 +3,7 @@
 
 #include "engine/config_table.h"
 #include "engine/simulation.h"
+#include "io/output_config.h"
 #include "io/raster_grid.h"
 
 #include <memory>
@@ -10,11 +11,6 @@
 #include <vector>
 
 namespace talus {
-
-struct OutputSettings {
-  std::string directory = "talus_out";
-  double frameInterval = 0; ///< seconds between frames; 0 writes only the final state
-};
 
 struct BodyReport {
   std::string label;    ///< "bodies[i]" or the body's name

@@ -1,0 +1,44 @@
+// The interface every output implements: the run driver calls it at start, after every step, at
+// every frame and at the end. An output that is not requested is never constructed, so it costs
+// nothing (io/output_set.cpp decides which exist).
+#pragma once
+
+#include "engine/simulation.h"
+
+#include <string>
+#include <vector>
+
+namespace talus {
+
+class OutputObserver {
+public:
+  virtual ~OutputObserver() = default;
+
+  /// Short identifier used in summary.json ("vdb_frames", "hazard_maps", ...).
+  virtual std::string name() const = 0;
+
+  /// Before the first step (time 0, the seeded state; the grid holds no data yet).
+  virtual void onStart(const Simulation& sim) {}
+  /// After every step; dt is the step just taken (s). The grid holds that step's node data.
+  virtual void onStep(const Simulation& sim, double dt) {}
+  /// At every frame time (frame 0 is the initial state).
+  virtual void onFrame(const Simulation& sim, int index) {}
+  /// After the last step. `completed` is false when the run stopped on a numerical failure:
+  /// particle state may then be non-finite, so "final state" outputs should be skipped.
+  virtual void onFinish(const Simulation& sim, bool completed) {}
+
+  /// Files written so far, relative to the output directory.
+  const std::vector<std::string>& files() const { return files_; }
+
+protected:
+  void recordFile(const std::string& relativePath) {
+    for (const auto& f : files_)
+      if (f == relativePath) return;
+    files_.push_back(relativePath);
+  }
+
+private:
+  std::vector<std::string> files_;
+};
+
+} // namespace talus

@@ -1,0 +1,37 @@
+// The outputs a scene requested, built from its [output] section, and the clock on each of them.
+#pragma once
+
+#include "io/output_observer.h"
+#include "io/run_summary.h"
+#include "io/scene.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+class OutputSet {
+public:
+  /// Constructs only the outputs `scene.output` asks for. `outDir` must exist.
+  OutputSet(const SceneSetup& scene, const std::string& outDir);
+  ~OutputSet();
+
+  void start(const Simulation& sim);
+  /// After each step; the step size is the time since the previous call.
+  void step(const Simulation& sim);
+  void frame(const Simulation& sim, int index);
+  void finish(const Simulation& sim, bool completed);
+
+  /// Identifiers of the constructed outputs, in call order.
+  std::vector<std::string> names() const;
+  std::vector<OutputReport> reports() const;
+
+private:
+  template <class F> void each(F&& f);
+  std::vector<std::unique_ptr<OutputObserver>> outputs_;
+  std::vector<double> seconds_;
+  double lastTime_ = 0;
+};
+
+} // namespace talus

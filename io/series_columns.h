@@ -1,0 +1,28 @@
+// A group of columns of series.csv (energies, a section's discharge, a path's front, ...).
+#pragma once
+
+#include "engine/simulation.h"
+
+#include <string>
+#include <vector>
+
+namespace talus {
+
+class SeriesColumns {
+public:
+  virtual ~SeriesColumns() = default;
+  /// Called once before the first sample; the header may depend on the materials present.
+  virtual void onStart(const Simulation& sim) {}
+  /// Column names with their units (valid after onStart).
+  virtual std::vector<std::string> header() const = 0;
+  /// After every step: accumulate whatever must not be missed between samples.
+  virtual void onStep(const Simulation& sim, double dt) {}
+  /// Appends this group's values at a sample; `elapsed` is the time since the previous sample
+  /// (0 at the first sample).
+  virtual void sample(const Simulation& sim, double elapsed, std::vector<double>& row) = 0;
+};
+
+/// Material and section names in column names: anything but [A-Za-z0-9_.-] becomes '_'.
+std::string columnSafe(const std::string& s);
+
+} // namespace talus

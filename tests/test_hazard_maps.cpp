@@ -1,0 +1,287 @@
+// Hazard maps: GeoTIFFs on the DEM's grid and CRS that gdalinfo reads, with values checked
+// against a slab of known thickness moving at a known speed over a known slope.
+#include "io/dem_raster.h"
+#include "io/hazard_maps.h"
+#include "io/run_driver.h"
+#include "test_support.h"
+
+#include <array>
+#include <cairo.h>
+#include <cmath>
+#include <cstdio>
+#include <gdal_priv.h>
+#include <cstring>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+using namespace talus;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string runCommand(const std::string& cmd, int& status) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) {
+    status = -1;
+    return out;
+  }
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+  status = pclose(p);
+  return out;
+}
+
+struct Raster {
+  RasterGrid grid;
+  std::vector<float> v;
+  /// Value of the cell containing world (x, y).
+  float at(double x, double y) const {
+    int c = 0, r = 0;
+    if (!grid.locate(x, y, c, r)) {
+      ADD_FAILURE() << "outside the raster: " << x << ", " << y;
+      return NAN;
+    }
+    return v[grid.index(c, r)];
+  }
+};
+
+Raster readTif(const std::string& path) {
+  GDALAllRegister();
+  Raster r;
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
+  if (!ds) {
+    ADD_FAILURE() << "GDAL cannot open " << path;
+    return r;
+  }
+  double gt[6];
+  ds->GetGeoTransform(gt);
+  r.grid.nx = ds->GetRasterXSize(), r.grid.ny = ds->GetRasterYSize();
+  r.grid.originX = gt[0], r.grid.originY = gt[3], r.grid.cellSize = gt[1];
+  r.v.resize(r.grid.size());
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, r.grid.nx, r.grid.ny, r.v.data(), r.grid.nx, r.grid.ny,
+                                           GDT_Float32, 0, 0),
+            CE_None);
+  GDALClose(ds);
+  return r;
+}
+
+std::string fixed15(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.15f", v);
+  return b;
+}
+
+/// Every .tif under dir: gdalinfo reads it with the expected size, origin, pixel size, CRS and
+/// nodata, and its band says what it holds. Returns how many were checked.
+int checkWithGdalinfo(const std::string& dir, const RasterGrid& g, const std::string& crsId) {
+  int checked = 0;
+  int status = 0;
+  runCommand("gdalinfo --version", status);
+  if (status != 0) {
+    ADD_FAILURE() << "gdalinfo not found (Debian package gdal-bin, installed by tools/setup.sh)";
+    return 0;
+  }
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (e.path().extension() != ".tif") continue;
+    const std::string info = runCommand("gdalinfo '" + e.path().string() + "' 2>&1", status);
+    EXPECT_EQ(status, 0) << info;
+    int q = 0;
+    while (q < HazardMaps::kQuantities && e.path().stem() != HazardMaps::stem(HazardMaps::Quantity(q))) ++q;
+    if (q == HazardMaps::kQuantities) {
+      ADD_FAILURE() << "unexpected map " << e.path();
+      continue;
+    }
+    for (const std::string& s :
+         {"Size is " + std::to_string(g.nx) + ", " + std::to_string(g.ny),
+          "Origin = (" + fixed15(g.originX) + "," + fixed15(g.originY) + ")",
+          "Pixel Size = (" + fixed15(g.cellSize) + "," + fixed15(-g.cellSize) + ")", crsId,
+          std::string("NoData Value=-9999"), std::string("Description = ") + HazardMaps::band(HazardMaps::Quantity(q)),
+          std::string("Unit Type: ") + HazardMaps::unit(HazardMaps::Quantity(q))})
+      EXPECT_NE(info.find(s), std::string::npos) << e.path() << " lacks '" << s << "':\n" << info;
+    ++checked;
+  }
+  return checked;
+}
+
+void expectPng(const std::string& path) {
+  cairo_surface_t* img = cairo_image_surface_create_from_png(path.c_str());
+  EXPECT_EQ(cairo_surface_status(img), CAIRO_STATUS_SUCCESS) << path;
+  cairo_surface_destroy(img);
+}
+
+// A snow slab 0.4 m thick sliding at 2 m/s (no gravity, so it translates rigidly) beside a rock
+// slab at rest, at national grid coordinates; a DEM of 0.2 m cells rising 0.5 m per m eastwards.
+const char* kSlabs = R"([simulation]
+dx = 0.1
+end_time = 0.5
+gravity = [0, 0, 0]
+[domain]
+min = [2600000, 1200000, 1000]
+max = [2600004, 1200003, 1002]
+[[materials]]
+name = "snow"
+model = "elastic"
+density = 300
+youngs_modulus = 1e4
+[[materials]]
+name = "rock"
+model = "elastic"
+density = 2500
+youngs_modulus = 1e5
+[[bodies]]
+material = "snow"
+shape = "box"
+min = [2600000.4, 1200000.4, 1000.2]
+max = [2600002.4, 1200001.2, 1000.6]
+velocity = [2, 0, 0]
+[[bodies]]
+material = "rock"
+shape = "box"
+min = [2600003.0, 1200001.8, 1000.2]
+max = [2600003.6, 1200002.6, 1000.6]
+[output.maps]
+per_material = true
+erodible = ["snow"]
+)";
+
+} // namespace
+
+TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
+  const std::string dir = test::tempDir("maps_dem");
+  SceneSetup scene = loadSceneString(kSlabs, "test.toml");
+  auto dem = std::make_shared<DemRaster>();
+  dem->grid.nx = 40, dem->grid.ny = 30, dem->grid.cellSize = 0.2;
+  dem->grid.originX = 2599998.0, dem->grid.originY = 1200004.0; // larger than the domain
+  dem->grid.crsWkt = crsToWkt("EPSG:2056");
+  dem->height.resize(dem->grid.size());
+  for (int r = 0; r < dem->grid.ny; ++r)
+    for (int c = 0; c < dem->grid.nx; ++c)
+      dem->height[dem->grid.index(c, r)] = float(999 + 0.5 * (dem->grid.cellCentreX(c) - 2599998.0));
+  int hc, hr;
+  ASSERT_TRUE(dem->grid.locate(2600003.7, 1200000.3, hc, hr));
+  dem->height[dem->grid.index(hc, hr)] = NAN; // a hole in the DEM
+  scene.dem = dem;
+  RunOptions opt;
+  opt.outDir = dir;
+  opt.progress = false;
+  ASSERT_TRUE(runScene(scene, opt).ok);
+
+  // 6 maps for all material, 5 for rock (not erodible), 6 for snow.
+  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", dem->grid, "ID[\"EPSG\",2056]"), 17);
+  for (const char* f : {"maps/erosion_depth.png", "maps/max_pressure.png", "maps/snow/max_speed.png"})
+    expectPng(dir + "/" + f);
+  EXPECT_FALSE(fs::exists(dir + "/maps/rock/erosion_depth.tif"));
+
+  auto map = [&](const std::string& name) { return readTif(dir + "/maps/" + name + ".tif"); };
+  const Raster hv = map("max_flow_height_vertical"), hn = map("max_flow_height_slope_normal"),
+               speed = map("max_speed"), pressure = map("max_pressure"), deposit = map("deposit_thickness"),
+               erosion = map("erosion_depth"), rockH = map("rock/max_flow_height_vertical"),
+               snowErosion = map("snow/erosion_depth");
+  const double X = 2600000, Y = 1200000;
+  // Cells whose centre is 0.3 m (a cell and a half particle spacing) inside a slab see exactly
+  // its thickness: bilinear splatting of a regular lattice sums to one. Float storage: 1e-5.
+  const double h = 0.4, cosSlope = 1 / std::sqrt(1.25), tol = 1e-5;
+  EXPECT_NEAR(hv.at(X + 0.9, Y + 0.7), h, tol);                    // where the snow started
+  EXPECT_NEAR(hv.at(X + 3.1, Y + 0.7), h, tol);                    // where it ended
+  EXPECT_NEAR(hn.at(X + 0.9, Y + 0.7), h * cosSlope, tol);         // slope-normal on the DEM slope
+  EXPECT_NEAR(speed.at(X + 2.1, Y + 0.7), 2.0, tol);               // its speed, and rho v^2 in kPa
+  EXPECT_NEAR(pressure.at(X + 2.1, Y + 0.7), 300 * 4 / 1000.0, tol);
+  EXPECT_NEAR(deposit.at(X + 0.9, Y + 0.7), 0.0, tol);             // vacated
+  EXPECT_NEAR(deposit.at(X + 2.5, Y + 0.7), h, tol);               // covered at the end
+  EXPECT_NEAR(erosion.at(X + 0.9, Y + 0.7), h, tol);               // lost all its snow
+  EXPECT_NEAR(erosion.at(X + 2.1, Y + 0.7), 0.0, tol);             // covered before and after
+  EXPECT_NEAR(snowErosion.at(X + 0.9, Y + 0.7), h, tol);
+  EXPECT_NEAR(rockH.at(X + 3.3, Y + 2.1), h, tol);                 // the rock, at rest
+  EXPECT_NEAR(rockH.at(X + 0.9, Y + 0.7), 0.0, tol);               // no rock where the snow was
+  EXPECT_NEAR(speed.at(X + 3.3, Y + 2.1), 0.0, tol);
+  EXPECT_NEAR(deposit.at(X + 3.3, Y + 2.1), h, tol);
+  EXPECT_NEAR(erosion.at(X + 3.3, Y + 2.1), 0.0, tol);             // rock is not erodible
+  // Speed is a mass-weighted mean, so every snow cell, even at the slab's fringe, reads 2 m/s.
+  size_t snowCells = 0;
+  for (size_t i = 0; i < speed.v.size(); ++i)
+    if (speed.v[i] > 0) {
+      EXPECT_NEAR(speed.v[i], 2.0, tol);
+      ++snowCells;
+    }
+  EXPECT_GT(snowCells, 100u);
+  // Outside the domain and in the DEM's hole: no data.
+  EXPECT_EQ(hv.at(2599998.1, 1200003.9), -9999.f);
+  EXPECT_EQ(hv.at(X + 3.7, Y + 0.3), -9999.f);
+  EXPECT_EQ(hv.at(X + 3.7, Y + 0.5), 0.f);
+}
+
+TEST(OutputMaps, WithoutDemTheGridCoversTheDomainAndTheSlopeComesFromTheTerrain) {
+  const std::string dir = test::tempDir("maps_nodem");
+  // A block resting (no gravity) above a 30-degree plane; maps on 0.25 m cells in EPSG:2056.
+  SceneSetup scene = loadSceneString(R"([simulation]
+dx = 0.1
+end_time = 0.02
+gravity = [0, 0, 0]
+[domain]
+min = [2600000, 1200000, 999]
+max = [2600004, 1200002, 1005]
+[terrain]
+plane = { point = [2600000, 1200000, 1000], normal = [-0.5, 0, 0.8660254037844386] }
+boundary = "slip"
+[[materials]]
+name = "rock"
+model = "elastic"
+density = 2500
+youngs_modulus = 1e6
+[[bodies]]
+material = "rock"
+shape = "box"
+min = [2600001, 1200000.5, 1003.2]
+max = [2600003, 1200001.5, 1003.7]
+[output]
+crs = "EPSG:2056"
+[output.maps]
+cell_size = 0.25
+quicklook = false
+)",
+                                     "test.toml");
+  RunOptions opt;
+  opt.outDir = dir;
+  opt.progress = false;
+  ASSERT_TRUE(runScene(scene, opt).ok);
+  RasterGrid g;
+  g.nx = 16, g.ny = 8, g.cellSize = 0.25, g.originX = 2600000, g.originY = 1200002;
+  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", g, "ID[\"EPSG\",2056]"), 5);
+  EXPECT_FALSE(fs::exists(dir + "/maps/max_speed.png"));
+  const Raster hv = readTif(dir + "/maps/max_flow_height_vertical.tif"),
+               hn = readTif(dir + "/maps/max_flow_height_slope_normal.tif");
+  // Cell centre (2600002.125, 1200001.125) is 0.375 m inside the block: exactly 0.5 m thick;
+  // the slope from the terrain SDF (bisection, then central differences) is 30 degrees.
+  EXPECT_NEAR(hv.at(2600002.125, 1200001.125), 0.5, 1e-5);
+  EXPECT_NEAR(hn.at(2600002.125, 1200001.125), 0.5 * std::cos(M_PI / 6), 1e-5);
+}
+
+TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {
+  // Maps are summed in parallel; like the engine, they must not depend on the thread count.
+  auto sim = test::makeSimulation(kSlabs, {"simulation.gravity=[0,0,-9.81]"});
+  MapSettings ms;
+  ms.enabled = true;
+  ms.perMaterial = true;
+  const RasterGrid grid = HazardMaps::domainGrid(sim->settings(), 0.15, "");
+  HazardMaps one(test::tempDir("maps_threads"), grid, nullptr, ms), two(test::tempDir("maps_threads"), grid, nullptr, ms);
+  auto with = [](int threads, auto&& f) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    f();
+  };
+  with(1, [&] { one.onStart(*sim); });
+  with(2, [&] { two.onStart(*sim); });
+  for (int i = 0; i < 20; ++i) {
+    const double dt = sim->step();
+    with(1, [&] { one.onStep(*sim, dt); });
+    with(2, [&] { two.onStep(*sim, dt); });
+  }
+  EXPECT_EQ(one.accumulations(), 21u);
+  for (int layer = 0; layer < 3; ++layer)
+    for (int q = 0; q < HazardMaps::Deposit; ++q) {
+      const auto a = one.raster(HazardMaps::Quantity(q), layer), b = two.raster(HazardMaps::Quantity(q), layer);
+      EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << HazardMaps::stem(HazardMaps::Quantity(q));
+      EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.f);
+    }
+}
