@@ -42,7 +42,7 @@ struct HazardMaps::Impl {
   std::vector<std::string> layerMaterial;
   std::vector<std::vector<float>> maxima;  ///< [layer][q * cells + cell]
   std::vector<std::vector<float>> sums;    ///< [layer][kSums * cell + k]
-  std::vector<std::vector<float>> deposit, erosion, initial; ///< [layer][cell]
+  std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
   std::vector<uint8_t> erodibleGroup;
   std::vector<float> cosSlope; ///< NaN until known
   std::vector<uint8_t> mark; ///< cell has sums this accumulation
@@ -140,17 +140,17 @@ RasterGrid HazardMaps::domainGrid(const SimulationSettings& s, double cellSize, 
 
 const char* HazardMaps::stem(Quantity q) {
   static const char* s[] = {"max_flow_height_vertical", "max_flow_height_slope_normal", "max_speed", "max_pressure",
-                            "deposit_thickness", "erosion_depth"};
+                            "deposit_thickness", "erosion_depth", "initial_thickness", "ground_elevation"};
   return s[q];
 }
 const char* HazardMaps::band(Quantity q) {
   static const char* s[] = {"max_flow_height_vertical_m", "max_flow_height_slope_normal_m", "max_speed_m_s",
                             "max_dynamic_pressure_kPa", "final_deposit_thickness_vertical_m",
-                            "erosion_depth_vertical_m"};
+                            "erosion_depth_vertical_m", "initial_thickness_vertical_m", "ground_elevation_m"};
   return s[q];
 }
 const char* HazardMaps::unit(Quantity q) {
-  static const char* s[] = {"m", "m", "m/s", "kPa", "m", "m"};
+  static const char* s[] = {"m", "m", "m/s", "kPa", "m", "m", "m", "m"};
   return s[q];
 }
 
@@ -218,6 +218,7 @@ void HazardMaps::onStart(const Simulation& sim) {
     for (const auto& n : settings_.erodible)
       if (groups[g]->name() == n) m.erodibleGroup[g] = 1;
   if (!settings_.erodible.empty()) m.thickness(sim, m.erodibleGroup, m.initial);
+  m.thickness(sim, std::vector<uint8_t>(groups.size(), 1), m.start);
   accumulate(sim);
 }
 
@@ -380,9 +381,10 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
   }
   static const char* titles[] = {"Maximum flow height (vertical)", "Maximum flow height (slope-normal)",
                                  "Maximum speed", "Maximum dynamic pressure", "Final deposit thickness (vertical)",
-                                 "Erosion depth (vertical)"};
+                                 "Erosion depth (vertical)", "Initial thickness (vertical)", "Ground elevation"};
   static const chart::Ramp ramps[] = {chart::Ramp::Viridis, chart::Ramp::Viridis, chart::Ramp::Plasma,
-                                      chart::Ramp::Magma, chart::Ramp::Browns, chart::Ramp::Blues};
+                                      chart::Ramp::Magma, chart::Ramp::Browns, chart::Ramp::Blues,
+                                      chart::Ramp::Browns, chart::Ramp::Viridis};
   char span[64];
   std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
   for (int l = 0; l < m.layers; ++l) {
@@ -393,6 +395,7 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
       const auto q = Quantity(qi);
       if ((q == Deposit || q == Erosion) && !completed) continue;
       if (q == Erosion && !anyErodible) continue;
+      if (q == Ground && (l > 0 || !dem_)) continue;
       const std::string rel = dir + "/" + stem(q);
       GeoTiffBand b;
       b.description = band(q);
@@ -403,7 +406,7 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
                     {"TALUS_TIME_END_S", std::to_string(m.endTime)}};
       writeGeoTiff((fs::path(outDir_) / (rel + ".tif")).string(), grid_, raster(q, l), b);
       recordFile(rel + ".tif");
-      if (settings_.quicklook) {
+      if (settings_.quicklook && q != Ground) {
         std::vector<float> win(m.cells);
         const std::vector<float> full = raster(q, l);
         for (int r = 0; r < m.window.ny; ++r)
@@ -430,6 +433,13 @@ std::vector<float> HazardMaps::raster(Quantity q, int layer) const {
   if (q < kMaxima) src = m.maxima[size_t(layer)].data() + size_t(q) * m.cells;
   else if (q == Deposit && !m.deposit.empty()) src = m.deposit[size_t(layer)].data();
   else if (q == Erosion && !m.erosion.empty()) src = m.erosion[size_t(layer)].data();
+  else if (q == Initial && !m.start.empty()) src = m.start[size_t(layer)].data();
+  if (q == Ground) {
+    if (dem_)
+      for (size_t g = 0; g < out.size(); ++g)
+        if (std::isfinite(dem_->height[g])) out[g] = dem_->height[g];
+    return out;
+  }
   for (int r = 0; r < m.window.ny; ++r)
     for (int c = 0; c < m.window.nx; ++c) {
       const size_t g = grid_.index(m.c0 + c, m.r0 + r);

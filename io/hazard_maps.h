@@ -1,6 +1,8 @@
 // Hazard maps: per raster column, maxima over the run of flow height (vertical and slope-normal),
 // speed and dynamic pressure, plus the final deposit and the erosion of erodible covers; written
-// at the end as GeoTIFFs on the DEM's grid and CRS (maps/*.tif) with PNG quick-looks.
+// at the end as GeoTIFFs on the DEM's grid and CRS (maps/*.tif) with PNG quick-looks; also the
+// initial thickness and, with a DEM, the ground as simulated, so profiles and run-up elevations
+// can be taken from the maps alone.
 //
 // Every accumulation splats each particle's volume (mass / reference density), mass and speed
 // onto the four nearest cell centres with bilinear weights (cloud-in-cell), so a uniform layer
@@ -21,7 +23,12 @@ namespace talus {
 
 class HazardMaps final : public OutputObserver {
 public:
-  enum Quantity { MaxHeightVertical, MaxHeightNormal, MaxSpeed, MaxPressure, Deposit, Erosion, kQuantities };
+  enum Quantity {
+    MaxHeightVertical, MaxHeightNormal, MaxSpeed, MaxPressure, Deposit, Erosion,
+    Initial, ///< thickness (vertical) of all particles at the start
+    Ground,  ///< the ground as simulated (with a DEM only; not per material)
+    kQuantities
+  };
   static constexpr float kNoData = -9999.f;
 
   /// `grid` georeferences the written rasters; `dem` (may be null) holds heights on that same
@@ -40,7 +47,8 @@ public:
 
   /// Quantity q on the whole grid (kNoData outside the domain), for all material (layer 0) or
   /// for material group i (layer 1 + i, when per_material). Deposit and erosion exist after
-  /// onFinish; erosion is zero where nothing erodible was.
+  /// onFinish; erosion is zero where nothing erodible was. Ground is the DEM's heights (NaN
+  /// without a DEM).
   std::vector<float> raster(Quantity q, int layer = 0) const;
   const RasterGrid& grid() const { return grid_; }
   size_t accumulations() const { return accumulations_; }

@@ -88,8 +88,10 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
       const double grey = std::isfinite(s) ? 0.25 + 0.7 * s : 0.88;
       const float v = val[size_t(r) * w + c];
       double R = grey, G = grey, B = grey;
-      if (v > 0) {
-        const chart::Rgb col = chart::ramp(style.ramp, v / vmax);
+      const int k = int(std::lround(v));
+      const bool isClass = !style.classes.empty() && k >= 1 && k <= int(style.classes.size());
+      if (v > 0 && (style.classes.empty() || isClass)) {
+        const chart::Rgb col = isClass ? style.classes[size_t(k - 1)].second : chart::ramp(style.ramp, v / vmax);
         const double a = 0.85; // let the relief show through a little
         R = a * col.r + (1 - a) * grey, G = a * col.g + (1 - a) * grey, B = a * col.b + (1 - a) * grey;
       }
@@ -101,7 +103,7 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
   // Page layout: map scaled to at most ~900 px, colour bar right, titles above, scale bar below.
   const double scale = std::min(900.0 / w, 900.0 / h);
   const double mapW = w * scale, mapH = h * scale;
-  const double left = 24, top = 70, right = 130, bottom = 64;
+  const double left = 24, top = 70, right = style.classes.empty() ? 130 : 150, bottom = 64;
   const int W = int(std::ceil(left + mapW + right)), H = int(std::ceil(top + mapH + bottom));
   cairo_surface_t* page = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
   cairo_t* cr = cairo_create(page);
@@ -126,26 +128,40 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
   chart::text(cr, left, 28, style.title, 20, Align::Start, Align::End, true);
   chart::text(cr, left, 52, style.subtitle + (vmaxData > 0 ? "" : "  (no flow in this map)"), 13);
 
-  // Colour scale.
+  // Colour scale, or the legend of a categorical map.
   const double barX = left + mapW + 24, barW = 18, barTop = top + 20, barH = std::min(mapH - 20, 320.0);
-  for (int i = 0; i < int(barH); ++i) {
-    const chart::Rgb col = chart::ramp(style.ramp, 1 - (i + 0.5) / barH);
-    cairo_set_source_rgb(cr, col.r, col.g, col.b);
-    cairo_rectangle(cr, barX, barTop + i, barW, 1);
-    cairo_fill(cr);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_rectangle(cr, barX + 0.5, barTop + 0.5, barW - 1, barH - 1);
-  cairo_stroke(cr);
-  double step = 1;
-  for (double t : chart::niceTicks(0, vmax, 5, &step)) {
-    const double y = barTop + barH * (1 - t / vmax);
-    cairo_move_to(cr, barX + barW, y);
-    cairo_line_to(cr, barX + barW + 5, y);
+  if (!style.classes.empty()) {
+    for (size_t i = 0; i < style.classes.size(); ++i) {
+      const double y = barTop + 26.0 * double(i);
+      const chart::Rgb col = style.classes[i].second;
+      cairo_set_source_rgb(cr, col.r, col.g, col.b);
+      cairo_rectangle(cr, barX, y, barW, barW);
+      cairo_fill(cr);
+      cairo_set_source_rgb(cr, 0, 0, 0);
+      cairo_rectangle(cr, barX + 0.5, y + 0.5, barW - 1, barW - 1);
+      cairo_stroke(cr);
+      chart::text(cr, barX + barW + 6, y + barW / 2, style.classes[i].first, 12, Align::Start, Align::Centre);
+    }
+  } else {
+    for (int i = 0; i < int(barH); ++i) {
+      const chart::Rgb col = chart::ramp(style.ramp, 1 - (i + 0.5) / barH);
+      cairo_set_source_rgb(cr, col.r, col.g, col.b);
+      cairo_rectangle(cr, barX, barTop + i, barW, 1);
+      cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_rectangle(cr, barX + 0.5, barTop + 0.5, barW - 1, barH - 1);
     cairo_stroke(cr);
-    chart::text(cr, barX + barW + 8, y, chart::tickLabel(t, step), 12, Align::Start, Align::Centre);
+    double step = 1;
+    for (double t : chart::niceTicks(0, vmax, 5, &step)) {
+      const double y = barTop + barH * (1 - t / vmax);
+      cairo_move_to(cr, barX + barW, y);
+      cairo_line_to(cr, barX + barW + 5, y);
+      cairo_stroke(cr);
+      chart::text(cr, barX + barW + 8, y, chart::tickLabel(t, step), 12, Align::Start, Align::Centre);
+    }
+    chart::text(cr, barX, barTop - 8, style.unit, 13, Align::Start, Align::End, true);
   }
-  chart::text(cr, barX, barTop - 8, style.unit, 13, Align::Start, Align::End, true);
 
   // Scale bar: a nice length near a quarter of the map width, in two halves.
   const double widthM = grid.nx * grid.cellSize;

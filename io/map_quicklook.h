@@ -7,6 +7,7 @@
 #include "io/raster_grid.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace talus {
@@ -16,6 +17,9 @@ struct QuicklookStyle {
   std::string subtitle; ///< e.g. "all materials, t = 0 - 12 s"
   std::string unit;     ///< shown on the colour scale
   chart::Ramp ramp = chart::Ramp::Viridis;
+  /// Categorical map instead: value k (1..n) is drawn in classes[k - 1].second, with a legend of
+  /// the labels in place of the colour scale (0 shows the background only).
+  std::vector<std::pair<std::string, chart::Rgb>> classes;
 };
 
 /// `values` and `heights` (optional, may be empty) cover `grid` row by row (row 0 north).

@@ -126,8 +126,25 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
     p.halfWidth = t.positive("half_width", 0, true);
     s.paths.push_back(p);
   }
-  if ((!s.sections.empty() || !s.paths.empty()) && !s.series)
-    out->fail("series", "sections and paths are columns of series.csv: they need series = true");
+  used.clear();
+  const auto probes = out->tables("probes");
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const ConfigTable& t = *probes[i];
+    ProbeSpec p;
+    p.name = readName(t, "probe" + std::to_string(i), used);
+    const auto xyz = t.numbers("point");
+    if (xyz.size() != 2 && xyz.size() != 3)
+      t.fail("point", "expected [x, y] (start at the material's mean height there) or [x, y, z] (m)");
+    for (double v : xyz)
+      if (!std::isfinite(v)) t.fail("point", "must contain finite numbers");
+    p.hasZ = xyz.size() == 3;
+    p.point = Eigen::Vector3d(xyz[0], xyz[1], p.hasZ ? xyz[2] : 0.0);
+    p.radius = t.positive("radius", 0);
+    p.materials = readMaterialList(t, "materials", materialNames);
+    s.probes.push_back(p);
+  }
+  if ((!s.sections.empty() || !s.paths.empty() || !s.probes.empty()) && !s.series)
+    out->fail("series", "sections, paths and probes are columns of series.csv: they need series = true");
   return s;
 }
 

@@ -30,6 +30,15 @@ struct PathSpec {
   double halfWidth = 0; ///< corridor half-width (m) searched either side of the path
 };
 
+/// A point advected with the flow ([[output.probes]]), whose speed is recorded.
+struct ProbeSpec {
+  std::string name;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< world (m); z unused unless hasZ
+  bool hasZ = false;    ///< [x, y] given: start at the mass-weighted mean height of that column
+  double radius = 0;    ///< m; 0 = two grid cells
+  std::vector<std::string> materials; ///< empty = all
+};
+
 struct MapSettings {
   bool enabled = false;
   double cellSize = 0;       ///< m, when the scene has no DEM; 0 = two grid cells
@@ -58,6 +67,7 @@ struct OutputSettings {
   std::vector<std::string> waterMaterials; ///< explicit; otherwise models named "water"
   std::vector<SectionSpec> sections;
   std::vector<PathSpec> paths;
+  std::vector<ProbeSpec> probes;
   MapSettings maps;
 };
 

@@ -189,6 +189,8 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
     }
   }
   plot("energy", "Energy", "energy (J)", energy);
+  // Kinetic energy alone: the potential change dwarfs it in the plot above.
+  plot("kinetic_energy", "Kinetic energy per material", "kinetic energy (J)", byPrefix(t, "kinetic_energy_J"));
   std::vector<ChartLine> mass = byPrefix(t, "mass_kg");
   const int removed = t.column("mass_removed_kg");
   if (removed >= 0) mass.push_back({"removed (left the domain)", columnValues(t, removed)});
@@ -200,6 +202,7 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
   plot("discharge", "Discharge through sections (mean over each row's interval)", "discharge (m\u00b3/s)", discharge);
   plot("front", "Front position along paths", "distance along path (m)", byPrefix(t, "front_m"));
   plot("front_speed", "Front speed along paths", "speed (m/s)", byPrefix(t, "front_speed_m_s"));
+  plot("probe_speed", "Speed at probes (moving with the flow)", "speed (m/s)", byPrefix(t, "probe_speed_m_s"));
   plot("water_surface", "Highest water surface", "elevation (m)", byPrefix(t, "max_water_surface_m"));
   return files;
 }

@@ -2,6 +2,7 @@
 
 #include "io/atomic_file.h"
 #include "io/front_tracker.h"
+#include "io/probe_tracker.h"
 #include "io/section_discharge.h"
 #include "io/series_plots.h"
 
@@ -124,6 +125,7 @@ TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTi
   columns_.push_back(std::make_unique<StateColumns>());
   for (const auto& sec : s.sections) columns_.push_back(std::make_unique<SectionDischarge>(sec));
   for (const auto& p : s.paths) columns_.push_back(std::make_unique<FrontTracker>(p, particleSpacing));
+  for (const auto& p : s.probes) columns_.push_back(std::make_unique<ProbeTracker>(p));
   columns_.push_back(std::make_unique<WaterSurfaceColumns>(s.waterMaterials));
 }
 

@@ -168,8 +168,11 @@ TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   opt.progress = false;
   ASSERT_TRUE(runScene(scene, opt).ok);
 
-  // 6 maps for all material, 5 for rock (not erodible), 6 for snow.
-  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", dem->grid, "ID[\"EPSG\",2056]"), 17);
+  // 8 maps for all material (with erosion, initial thickness and the ground), 6 for rock (not
+  // erodible), 7 for snow.
+  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", dem->grid, "ID[\"EPSG\",2056]"), 21);
+  EXPECT_FALSE(fs::exists(dir + "/maps/snow/ground_elevation.tif"));
+  EXPECT_FALSE(fs::exists(dir + "/maps/ground_elevation.png"));
   for (const char* f : {"maps/erosion_depth.png", "maps/max_pressure.png", "maps/snow/max_speed.png"})
     expectPng(dir + "/" + f);
   EXPECT_FALSE(fs::exists(dir + "/maps/rock/erosion_depth.tif"));
@@ -178,7 +181,8 @@ TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   const Raster hv = map("max_flow_height_vertical"), hn = map("max_flow_height_slope_normal"),
                speed = map("max_speed"), pressure = map("max_pressure"), deposit = map("deposit_thickness"),
                erosion = map("erosion_depth"), rockH = map("rock/max_flow_height_vertical"),
-               snowErosion = map("snow/erosion_depth");
+               snowErosion = map("snow/erosion_depth"), initial = map("initial_thickness"),
+               snowInitial = map("snow/initial_thickness"), ground = map("ground_elevation");
   const double X = 2600000, Y = 1200000;
   // Cells whose centre is 0.3 m (a cell and a half particle spacing) inside a slab see exactly
   // its thickness: bilinear splatting of a regular lattice sums to one. Float storage: 1e-5.
@@ -198,6 +202,11 @@ TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   EXPECT_NEAR(speed.at(X + 3.3, Y + 2.1), 0.0, tol);
   EXPECT_NEAR(deposit.at(X + 3.3, Y + 2.1), h, tol);
   EXPECT_NEAR(erosion.at(X + 3.3, Y + 2.1), 0.0, tol);             // rock is not erodible
+  EXPECT_NEAR(initial.at(X + 0.9, Y + 0.7), h, tol);               // the snow at the start
+  EXPECT_NEAR(initial.at(X + 3.3, Y + 2.1), h, tol);               // the rock at the start
+  EXPECT_NEAR(initial.at(X + 2.9, Y + 0.7), 0.0, tol);             // not yet reached
+  EXPECT_NEAR(snowInitial.at(X + 3.3, Y + 2.1), 0.0, tol);
+  EXPECT_NEAR(ground.at(X + 0.9, Y + 0.7), 999 + 0.5 * (X + 0.9 - 2599998.0), 1e-3); // the DEM itself
   // Speed is a mass-weighted mean, so every snow cell, even at the slab's fringe, reads 2 m/s.
   size_t snowCells = 0;
   for (size_t i = 0; i < speed.v.size(); ++i)
@@ -248,7 +257,7 @@ quicklook = false
   ASSERT_TRUE(runScene(scene, opt).ok);
   RasterGrid g;
   g.nx = 16, g.ny = 8, g.cellSize = 0.25, g.originX = 2600000, g.originY = 1200002;
-  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", g, "ID[\"EPSG\",2056]"), 5);
+  EXPECT_EQ(checkWithGdalinfo(dir + "/maps", g, "ID[\"EPSG\",2056]"), 6); // no ground without a DEM
   EXPECT_FALSE(fs::exists(dir + "/maps/max_speed.png"));
   const Raster hv = readTif(dir + "/maps/max_flow_height_vertical.tif"),
                hn = readTif(dir + "/maps/max_flow_height_slope_normal.tif");

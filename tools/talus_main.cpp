@@ -4,6 +4,7 @@
 #include "io/run_driver.h"
 #include "io/scene.h"
 #include "io/toml_reader.h"
+#include "tools/analysis_commands.h"
 #include "tools/benchmark.h"
 #include "tools/terrain_command.h"
 
@@ -87,6 +88,8 @@ int main(int argc, char** argv) {
   auto* terrainCmd = addTerrainCommand(app, terrainOpt);
   SynthDemOptions synthOpt;
   auto* synthCmd = addSynthDemCommand(app, synthOpt);
+  AnalysisOptions analysisOpt;
+  const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -95,6 +98,7 @@ int main(int argc, char** argv) {
     if (*benchCmd) return runBenchmarks(bench);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
+    if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
     if (*defaults) {
       std::cout << defaultSceneText();
       return 0;

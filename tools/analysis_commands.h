@@ -1,0 +1,42 @@
+// `talus profile`, `talus map-stats`, `talus compare`, `talus series-stats`: post-processing of
+// a run's maps and series (tools/analysis.h does the work).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace talus {
+
+struct AnalysisOptions {
+  // profile
+  std::vector<std::string> rasters, labels;
+  std::string line, ground, csv, plot, title;
+  double step = 0; ///< 0: the first raster's cell size
+  // map-stats / compare
+  std::vector<double> thresholds;
+  std::string path, reference, dem, png;
+  double halfWidth = std::numeric_limits<double>::infinity();
+  // series-stats
+  std::string series;
+  double restFraction = 0.01;
+  double frontStep = 5, frontWindow = 25;
+  std::string frontPlot, frontCsv;
+};
+
+struct AnalysisCommands {
+  CLI::App* profile = nullptr;
+  CLI::App* mapStats = nullptr;
+  CLI::App* compare = nullptr;
+  CLI::App* seriesStats = nullptr;
+};
+
+AnalysisCommands addAnalysisCommands(CLI::App& app, AnalysisOptions& o);
+/// Runs whichever of the commands was chosen; -1 when none was.
+int runAnalysisCommand(const AnalysisCommands& c, const AnalysisOptions& o);
+
+} // namespace talus
