@@ -67,6 +67,22 @@ TEST(TerrainSynthetic, VajontDamClosesTheBasinAtItsHeight) {
   EXPECT_LT(gorge, basin - 50); // the gorge floor drops 60 m below the basin's
 }
 
+TEST(TerrainSynthetic, WhymperSecondTrackIsGentlerThanTheCouloir) {
+  const DemRaster plain = synth("kind = \"whymper\"\ncell_size = 4\n");
+  const DemRaster two = synth("kind = \"whymper\"\ncell_size = 4\nside_offset = 250\n");
+  const double x0 = 2600000, couloir = 1200400, side = 1200150;
+  // Couloir (150 + 300 + 60 m, then 200 m down it): 48 degrees, untouched by the second track.
+  EXPECT_NEAR(slopeAlongX(two, x0 + 710, couloir), 48, 0.5);
+  EXPECT_NEAR(HeightField(two).height(x0 + 710, couloir), HeightField(plain).height(x0 + 710, couloir), 0.01);
+  // Second track: the 35-degree ramp below the hanging glacier, then 12 degrees.
+  EXPECT_NEAR(slopeAlongX(two, x0 + 750, side), 35, 0.5);
+  EXPECT_NEAR(slopeAlongX(two, x0 + 1400, side), 12, 0.5);
+  // Above the cliff both tracks are the same hanging glacier.
+  EXPECT_NEAR(HeightField(two).height(x0 + 250, side), HeightField(plain).height(x0 + 250, side), 0.01);
+  // Below it the second track stays higher than the couloir (a step separates them).
+  EXPECT_GT(HeightField(two).height(x0 + 900, side), HeightField(two).height(x0 + 900, couloir) + 100);
+}
+
 TEST(TerrainSynthetic, ReservoirBehindTheVajontDamHoldsWater) {
   test::useTestTerrainCache();
   const std::string s = R"([simulation]
