@@ -189,7 +189,7 @@ const std::vector<Kind>& kinds() {
                    {"side_offset", 0, "second track: its axis this far south of the couloir's (m); 0 = none"},
                    {"side_width", 160, "second track: trough width (m)"},
                    {"side_depth", 10, "second track: trough depth (m)"},
-                   {"side_length", 600, "second track: length of its steep glacier ramp below the hanging glacier (m)"},
+                   {"side_length", 600, "second track: length of its glacier ramp below the ice cliff (m)"},
                    {"side_angle", 35, "second track: ramp angle (deg)"},
                    {"side_runout_angle", 12, "second track: slope below the ramp (deg)"}}},
                  1800, 800, 2400,
@@ -207,31 +207,31 @@ const std::vector<Kind>& kinds() {
                    const double depth = p.at("couloir_depth"), hw = 0.5 * p.at("couloir_width");
                    const double blend = std::max(p.at("blend"), 1.0);
                    // Optional second track (the paper's Planpincieux branch): south of the couloir,
-                   // the hanging glacier continues as a gentler glacier ramp in a shallow trough
-                   // instead of breaking off into the cliff and the couloir: everything south of a
-                   // line side_width/2 + 40 m north of its axis follows that profile. The two
-                   // profiles agree above the cliff and are blended over ~40 m across that line,
-                   // so a steep step separates the tracks where they diverge.
+                   // below the same ice cliff, a gentler glacier ramp in a shallow trough instead of
+                   // the couloir: everything south of a line side_width/2 + 40 m north of its axis
+                   // follows that profile. The two profiles agree down to the cliff's foot and are
+                   // blended over ~40 m across that line, so a steep step separates the tracks
+                   // where they diverge.
                    const double off = p.at("side_offset");
                    std::shared_ptr<Profile> side;
                    if (off > 0)
                      side = std::make_shared<Profile>(
                          std::vector<std::pair<double, double>>{{p.at("upper_length"), p.at("upper_angle")},
                                                                 {p.at("glacier_length"), p.at("glacier_angle")},
+                                                                {p.at("cliff_length"), p.at("cliff_angle")},
                                                                 {p.at("side_length"), p.at("side_angle")},
                                                                 {Lx, p.at("side_runout_angle")}},
                          p.at("blend"), Lx, 0.5);
                    const double shw = 0.5 * p.at("side_width"), sdepth = p.at("side_depth");
-                   const double top = p.at("upper_length") + p.at("glacier_length");
-                   return [prof, side, a, b, depth, hw, blend, Ly, off, shw, sdepth, top](double X, double Y) {
+                   return [prof, side, a, b, depth, hw, blend, Ly, off, shw, sdepth](double X, double Y) {
                      const double r = (Y - 0.5 * Ly) / hw;
                      const double notch = std::max(0.0, 1 - r * r) * window(X, a, b, blend);
                      const double lateral = 0.02 * (Y - 0.5 * Ly) * (Y - 0.5 * Ly) / hw;
                      const double main = (*prof)(X) - depth * notch + lateral;
                      if (!side) return main;
                      const double ys = 0.5 * Ly - off, rs = (Y - ys) / shw;
-                     // The trough deepens from nothing at the hanging glacier's lip.
-                     const double trough = sdepth * std::max(0.0, 1 - rs * rs) * 0.5 * (1 + std::tanh((X - top) / 40));
+                     // The trough deepens from nothing at the foot of the cliff.
+                     const double trough = sdepth * std::max(0.0, 1 - rs * rs) * 0.5 * (1 + std::tanh((X - a) / 40));
                      const double w = 0.5 * (1 - std::tanh((Y - (ys + shw + 40)) / 20)); // 1 south of the ridge
                      return (1 - w) * main + w * ((*side)(X) - trough + lateral);
                    };

@@ -74,8 +74,9 @@ TEST(TerrainSynthetic, WhymperSecondTrackIsGentlerThanTheCouloir) {
   // Couloir (150 + 300 + 60 m, then 200 m down it): 48 degrees, untouched by the second track.
   EXPECT_NEAR(slopeAlongX(two, x0 + 710, couloir), 48, 0.5);
   EXPECT_NEAR(HeightField(two).height(x0 + 710, couloir), HeightField(plain).height(x0 + 710, couloir), 0.01);
-  // Second track: the 35-degree ramp below the hanging glacier, then 12 degrees.
-  EXPECT_NEAR(slopeAlongX(two, x0 + 750, side), 35, 0.5);
+  // Second track: the same ice cliff, then the 35-degree ramp, then 12 degrees.
+  EXPECT_NEAR(slopeAlongX(two, x0 + 480, side), 65, 1.0);
+  EXPECT_NEAR(slopeAlongX(two, x0 + 800, side), 35, 0.5);
   EXPECT_NEAR(slopeAlongX(two, x0 + 1400, side), 12, 0.5);
   // Above the cliff both tracks are the same hanging glacier.
   EXPECT_NEAR(HeightField(two).height(x0 + 250, side), HeightField(plain).height(x0 + 250, side), 0.01);
