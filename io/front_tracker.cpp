@@ -36,7 +36,11 @@ double FrontTracker::front(const Simulation& sim) const {
   for (const auto& p : local_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   lo.array() -= reach, hi.array() += reach;
   const size_t nseg = local_.size() - 1;
+  const float minSpeed2 = float(spec_.minSpeed * spec_.minSpeed);
   for (const MaterialGroup* g : sim.groups()) {
+    if (!spec_.materials.empty() &&
+        std::find(spec_.materials.begin(), spec_.materials.end(), g->name()) == spec_.materials.end())
+      continue;
     const ParticleSet& P = g->particles;
     const double invRho = 1.0 / g->density();
     // Chunks bin in parallel into their own arrays, summed in a fixed tree: the same front at
@@ -46,6 +50,7 @@ double FrontTracker::front(const Simulation& sim) const {
       for (size_t p = range.begin(); p != range.end(); ++p) {
         const Eigen::Vector2d x(P.x[p][0], P.x[p][1]);
         if (x.x() < lo.x() || x.y() < lo.y() || x.x() > hi.x() || x.y() > hi.y()) continue;
+        if (minSpeed2 > 0 && P.v[p].squaredNorm() < minSpeed2) continue;
         // Nearest point of the polyline: distance along it and signed lateral offset (left > 0).
         double best = std::numeric_limits<double>::infinity(), s = 0, lateral = 0;
         for (size_t k = 0; k < nseg; ++k) {

@@ -5,7 +5,9 @@
 // cell, linear weights between neighbouring bins) and by lateral lane (one cell wide); a bin's
 // thickness is its volume over its area. The front is the farthest distance along the path where
 // a lane's thickness profile, interpolated linearly between bin centres, still reaches the
-// threshold; its speed is the change since the previous row over the time between rows.
+// threshold; its speed is the change since the previous row over the time between rows. Only the
+// path's materials count (all by default), and only particles at least min_speed fast, so a
+// resting snow cover ahead of an avalanche is not taken for its front.
 #pragma once
 
 #include "io/output_config.h"

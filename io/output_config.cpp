@@ -124,6 +124,8 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
     p.points = readPolyline(t, "points");
     p.threshold = t.positive("threshold", 0);
     p.halfWidth = t.positive("half_width", 0, true);
+    p.minSpeed = t.positive("min_speed", 0, true);
+    p.materials = readMaterialList(t, "materials", materialNames);
     s.paths.push_back(p);
   }
   used.clear();

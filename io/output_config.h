@@ -28,6 +28,8 @@ struct PathSpec {
   std::vector<Eigen::Vector2d> points;
   double threshold = 0; ///< flow thickness (m) that counts as "reached"; 0 = one particle spacing
   double halfWidth = 0; ///< corridor half-width (m) searched either side of the path
+  double minSpeed = 0;  ///< particles slower than this (m/s) are ignored: a resting cover is no front
+  std::vector<std::string> materials; ///< only these count; empty = all
 };
 
 /// A point advected with the flow ([[output.probes]]), whose speed is recorded.

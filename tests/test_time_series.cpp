@@ -208,6 +208,70 @@ TEST(OutputSeries, FrontOfATranslatingSlabIsTrackedToOneCell) {
   }
 }
 
+TEST(OutputSeries, FrontIgnoresARestingCoverWithMinSpeedAndOtherMaterials) {
+  // A slab moving at 10 m/s towards a block at rest 6 m ahead (no gravity, they never meet in
+  // 0.4 s). Without a speed limit the front is the resting block's far end; with min_speed it is
+  // the slab's front; with materials it is that material's front.
+  const std::string dir = test::tempDir("series_front_cover");
+  SceneSetup s = loadSceneString(R"([simulation]
+dx = 0.2
+particles_per_cell = 8
+end_time = 0.4
+gravity = [0, 0, 0]
+[domain]
+min = [-10, -2, -2]
+max = [20, 2, 2]
+walls = "open"
+[[materials]]
+name = "slab"
+model = "elastic"
+density = 1000
+youngs_modulus = 1e4
+[[materials]]
+name = "cover"
+model = "elastic"
+density = 1000
+youngs_modulus = 1e4
+[[bodies]]
+material = "slab"
+shape = "box"
+min = [-6, -0.4, 0]
+max = [-1, 0.4, 0.4]
+velocity = [10, 0, 0]
+[[bodies]]
+material = "cover"
+shape = "box"
+min = [5, -0.4, 0]
+max = [12, 0.4, 0.4]
+[output]
+series_interval = 0.2
+[[output.paths]]
+name = "all"
+points = [[-8, 0], [18, 0]]
+[[output.paths]]
+name = "moving"
+points = [[-8, 0], [18, 0]]
+min_speed = 1
+[[output.paths]]
+name = "cover_only"
+points = [[-8, 0], [18, 0]]
+materials = ["cover"]
+)",
+                                 "test.toml");
+  RunOptions opt;
+  opt.outDir = dir;
+  opt.progress = false;
+  ASSERT_TRUE(runScene(s, opt).ok);
+  const Csv c = readCsv(dir + "/series.csv");
+  const size_t t = c.col("time_s"), all = c.col("front_m_all"), moving = c.col("front_m_moving"),
+               cover = c.col("front_m_cover_only");
+  for (const auto& r : c.rows) {
+    EXPECT_NEAR(r[all], 20, 0.2) << r[t];                 // x = 12, 20 m from the path's start
+    EXPECT_NEAR(r[cover], 20, 0.2) << r[t];
+    EXPECT_NEAR(r[moving], 7 + 10 * r[t], 0.2) << r[t];   // x = -1 + 10 t
+  }
+}
+
 TEST(OutputSeries, WaterSurfaceIsTheHighestWaterParticle) {
   // A water box (model "water") beside a taller rock block, at rest without gravity for a few
   // steps. Particles sit at the centres of a lattice of spacing dx/2, so the highest water
