@@ -188,7 +188,7 @@ const std::vector<Kind>& kinds() {
                    {"blend", 15, "half width of the slope transitions (m)"},
                    {"side_offset", 0, "second track: its axis this far south of the couloir's (m); 0 = none"},
                    {"side_width", 160, "second track: trough width (m)"},
-                   {"side_depth", 10, "second track: trough depth (m)"},
+                   {"side_depth", 15, "second track: trough depth (m)"},
                    {"side_length", 600, "second track: length of its glacier ramp below the ice cliff (m)"},
                    {"side_angle", 35, "second track: ramp angle (deg)"},
                    {"side_runout_angle", 12, "second track: slope below the ramp (deg)"}}},
@@ -207,11 +207,10 @@ const std::vector<Kind>& kinds() {
                    const double depth = p.at("couloir_depth"), hw = 0.5 * p.at("couloir_width");
                    const double blend = std::max(p.at("blend"), 1.0);
                    // Optional second track (the paper's Planpincieux branch): south of the couloir,
-                   // below the same ice cliff, a gentler glacier ramp in a shallow trough instead of
-                   // the couloir: everything south of a line side_width/2 + 40 m north of its axis
-                   // follows that profile. The two profiles agree down to the cliff's foot and are
-                   // blended over ~40 m across that line, so a steep step separates the tracks
-                   // where they diverge.
+                   // below the same ice cliff, a gentler glacier ramp in a trough instead of the
+                   // couloir: south of a line side_width/2 + 40 m north of its axis and below the
+                   // cliff, the terrain follows that profile (blended over ~40 m), so a steep step
+                   // separates the tracks where they diverge.
                    const double off = p.at("side_offset");
                    std::shared_ptr<Profile> side;
                    if (off > 0)
@@ -230,10 +229,13 @@ const std::vector<Kind>& kinds() {
                      const double main = (*prof)(X) - depth * notch + lateral;
                      if (!side) return main;
                      const double ys = 0.5 * Ly - off, rs = (Y - ys) / shw;
-                     // The trough deepens from nothing at the foot of the cliff.
-                     const double trough = sdepth * std::max(0.0, 1 - rs * rs) * 0.5 * (1 + std::tanh((X - a) / 40));
-                     const double w = 0.5 * (1 - std::tanh((Y - (ys + shw + 40)) / 20)); // 1 south of the ridge
-                     return (1 - w) * main + w * ((*side)(X) - trough + lateral);
+                     // Below the cliff the second track has its own cross-section: a trough in a
+                     // valley centred on its axis (same curvature as the main valley's).
+                     const double trough = sdepth * std::max(0.0, 1 - rs * rs);
+                     const double sideLateral = 0.02 * (off * off / hw + (Y - ys) * (Y - ys) / shw);
+                     // Weight 1 south of the dividing line and below the cliff, 0 elsewhere.
+                     const double w = 0.25 * (1 - std::tanh((Y - (ys + shw + 40)) / 20)) * (1 + std::tanh((X - a) / 20));
+                     return (1 - w) * main + w * ((*side)(X) - trough + sideLateral);
                    };
                  }});
     return v;
