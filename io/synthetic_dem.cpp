@@ -191,7 +191,8 @@ const std::vector<Kind>& kinds() {
                    {"side_depth", 15, "second track: trough depth (m)"},
                    {"side_length", 600, "second track: length of its glacier ramp below the ice cliff (m)"},
                    {"side_angle", 35, "second track: ramp angle (deg)"},
-                   {"side_runout_angle", 12, "second track: slope below the ramp (deg)"}}},
+                   {"side_runout_angle", 12, "second track: slope below the ramp (deg)"},
+                   {"side_ridge", 20, "second track: height of the ridge parting the tracks, from mid-cliff down (m)"}}},
                  1800, 800, 2400,
                  [](const Params& p, double Lx, double Ly) -> std::function<double(double, double)> {
                    auto prof = std::make_shared<Profile>(
@@ -207,10 +208,14 @@ const std::vector<Kind>& kinds() {
                    const double depth = p.at("couloir_depth"), hw = 0.5 * p.at("couloir_width");
                    const double blend = std::max(p.at("blend"), 1.0);
                    // Optional second track (the paper's Planpincieux branch): south of the couloir,
-                   // below the same ice cliff, a gentler glacier ramp in a trough instead of the
-                   // couloir: south of a line side_width/2 + 40 m north of its axis and below the
-                   // cliff, the terrain follows that profile (blended over ~40 m), so a steep step
-                   // separates the tracks where they diverge.
+                   // below the same ice cliff, a gentler glacier ramp in a trough replaces the
+                   // couloir. The tracks part at a dividing line side_width/2 + 40 m north of the
+                   // second track's axis: above the cliff the hanging glacier's cross-slope is then
+                   // centred on that line (ice falling there splits between the tracks); below it,
+                   // north of the line the couloir's valley, south of it the second track's own
+                   // valley and trough, level with it on the line, where a ridge rises to part the
+                   // flow. A steep step grows between the tracks downstream, as the couloir drops
+                   // faster.
                    const double off = p.at("side_offset");
                    std::shared_ptr<Profile> side;
                    if (off > 0)
@@ -221,21 +226,25 @@ const std::vector<Kind>& kinds() {
                                                                 {p.at("side_length"), p.at("side_angle")},
                                                                 {Lx, p.at("side_runout_angle")}},
                          p.at("blend"), Lx, 0.5);
-                   const double shw = 0.5 * p.at("side_width"), sdepth = p.at("side_depth");
-                   return [prof, side, a, b, depth, hw, blend, Ly, off, shw, sdepth](double X, double Y) {
+                   const double shw = 0.5 * p.at("side_width"), sdepth = p.at("side_depth"), ridge = p.at("side_ridge");
+                   const double cliff = p.at("cliff_length");
+                   return [prof, side, a, b, depth, hw, blend, Ly, off, shw, sdepth, ridge, cliff](double X, double Y) {
+                     auto lateral = [&](double y) { return 0.02 * (y - 0.5 * Ly) * (y - 0.5 * Ly) / hw; };
                      const double r = (Y - 0.5 * Ly) / hw;
                      const double notch = std::max(0.0, 1 - r * r) * window(X, a, b, blend);
-                     const double lateral = 0.02 * (Y - 0.5 * Ly) * (Y - 0.5 * Ly) / hw;
-                     const double main = (*prof)(X) - depth * notch + lateral;
+                     const double main = (*prof)(X) - depth * notch + lateral(Y);
                      if (!side) return main;
-                     const double ys = 0.5 * Ly - off, rs = (Y - ys) / shw;
-                     // Below the cliff the second track has its own cross-section: a trough in a
-                     // valley centred on its axis (same curvature as the main valley's).
+                     const double ys = 0.5 * Ly - off, yd = ys + shw + 40, rs = (Y - ys) / shw;
+                     const double upper = (*prof)(X) + lateral(yd) + 0.02 * (Y - yd) * (Y - yd) / hw;
                      const double trough = sdepth * std::max(0.0, 1 - rs * rs);
-                     const double sideLateral = 0.02 * (off * off / hw + (Y - ys) * (Y - ys) / shw);
-                     // Weight 1 south of the dividing line and below the cliff, 0 elsewhere.
-                     const double w = 0.25 * (1 - std::tanh((Y - (ys + shw + 40)) / 20)) * (1 + std::tanh((X - a) / 20));
-                     return (1 - w) * main + w * ((*side)(X) - trough + sideLateral);
+                     const double sideLateral = lateral(yd) + 0.02 * ((Y - ys) * (Y - ys) - (yd - ys) * (yd - ys)) / shw;
+                     const double lower = (*side)(X) - trough + sideLateral;
+                     const double below = 0.5 * (1 + std::tanh((X - a - 20) / 20)); // 0 above the cliff's foot
+                     const double south = 0.5 * (1 - std::tanh((Y - yd) / 20));
+                     // A ridge along the dividing line, rising from the middle of the cliff (a
+                     // buttress), parts the flow.
+                     const double parting = ridge * std::exp(-(Y - yd) * (Y - yd) / 400) * 0.5 * (1 + std::tanh((X - a + 0.5 * cliff) / 15));
+                     return (1 - below) * upper + below * ((1 - south) * main + south * lower) + parting;
                    };
                  }});
     return v;

@@ -78,8 +78,12 @@ TEST(TerrainSynthetic, WhymperSecondTrackIsGentlerThanTheCouloir) {
   EXPECT_NEAR(slopeAlongX(two, x0 + 480, side), 65, 1.0);
   EXPECT_NEAR(slopeAlongX(two, x0 + 800, side), 35, 0.5);
   EXPECT_NEAR(slopeAlongX(two, x0 + 1400, side), 12, 0.5);
-  // Above the cliff both tracks are the same hanging glacier.
-  EXPECT_NEAR(HeightField(two).height(x0 + 250, side), HeightField(plain).height(x0 + 250, side), 0.01);
+  // Above the cliff both tracks are the same hanging glacier: its profile, with a cross-slope
+  // centred on the dividing line (side_width / 2 + 40 m north of the second track's axis).
+  const double divide = side + 80 + 40;
+  EXPECT_NEAR(slopeAlongX(two, x0 + 300, divide), 32, 0.5);
+  EXPECT_LT(HeightField(two).height(x0 + 300, divide), HeightField(two).height(x0 + 300, divide + 60));
+  EXPECT_LT(HeightField(two).height(x0 + 300, divide), HeightField(two).height(x0 + 300, divide - 60));
   // Below it the second track stays higher than the couloir (a step separates them).
   EXPECT_GT(HeightField(two).height(x0 + 900, side), HeightField(two).height(x0 + 900, couloir) + 100);
 }
