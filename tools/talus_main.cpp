@@ -21,12 +21,15 @@ SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) 
 }
 
 int cmdRun(const std::string& scene, const std::string& out, int threads, const std::vector<std::string>& sets,
-           bool quiet) {
+           bool quiet, const std::string& resume) {
+  if (!resume.empty() && !out.empty() && out != resume)
+    throw InputError("--out", 0, "", "--resume continues in its own directory; do not give a different --out");
   SceneSetup setup = load(scene, sets);
   if (!quiet)
     for (const auto& n : setup.notes) std::fprintf(stderr, "talus: %s\n", n.c_str());
   RunOptions opt;
-  opt.outDir = out;
+  opt.outDir = resume.empty() ? out : resume;
+  opt.resume = !resume.empty();
   opt.threads = threads;
   opt.progress = !quiet;
   size_t n = 0;
@@ -69,6 +72,8 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "Worker threads (default: all)")->check(CLI::NonNegativeNumber);
   run->add_option("--set", sets, "Override a scene key: --set simulation.dx=0.02");
   run->add_flag("--quiet", quiet, "No progress bar or messages");
+  std::string resume;
+  run->add_option("--resume", resume, "Continue the run in DIR from DIR/checkpoint.h5 (same scene)");
 
   auto* check = app.add_subcommand("check", "Validate a scene and report the particles each body seeds");
   check->add_option("scene", scene, "Scene file (TOML)");
@@ -90,7 +95,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*run) return cmdRun(scene, out, threads, sets, quiet);
+    if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
     if (*benchCmd) return runBenchmarks(bench);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
