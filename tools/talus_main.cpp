@@ -5,6 +5,7 @@
 #include "io/scene.h"
 #include "io/toml_reader.h"
 #include "tools/benchmark.h"
+#include "tools/work_precision.h"
 #include "tools/terrain_command.h"
 
 #include <CLI/CLI.hpp>
@@ -81,6 +82,19 @@ int main(int argc, char** argv) {
 
   auto* defaults = app.add_subcommand("default-scene", "Print the embedded default scene");
 
+  WorkPrecisionOptions wp;
+  std::string single;
+  double singleCells = 0;
+  auto* wpCmd = app.add_subcommand("work-precision",
+                                   "Refine the validation cases; write docs/performance.md and its error-vs-time plot");
+  wpCmd->add_option("--out", wp.markdown, "Markdown report");
+  wpCmd->add_option("--image", wp.image, "PNG plot of error against wall time");
+  wpCmd->add_option("--shared", wp.sharedDir, "The ../shared directory (dam-break data)");
+  wpCmd->add_option("--double", wp.doubleBinary, "A talus built with -DTALUS_DOUBLE=ON");
+  wpCmd->add_flag("--quick", wp.quick, "Fewer, coarser runs");
+  wpCmd->add_option("--single", single, "Run one case and print: error wall particles steps");
+  wpCmd->add_option("--cells", singleCells, "Resolution for --single");
+
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
   benchCmd->add_option("--case", bench.cases, "Benchmark cases")->check(CLI::IsMember(benchmarkCaseNames()));
@@ -98,6 +112,7 @@ int main(int argc, char** argv) {
     if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
     if (*benchCmd) return runBenchmarks(bench);
+    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, 8, 0.4, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*defaults) {
