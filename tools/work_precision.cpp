@@ -1,7 +1,9 @@
 #include "tools/work_precision.h"
 
 #include "engine/types.h"
+#include "engine/simulation.h"
 #include "io/chart_drawing.h"
+#include "io/scene.h"
 #include "tools/benchmark.h"
 #include "tools/validation_cases.h"
 
@@ -296,6 +298,39 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
     const double dense = 1.4 * 0.9 * 0.8 * d * d * d / (dx * dx * dx) * sizeof(Vec4) / 1e6;
     md << "| " << d * d * d << " | " << fmt("%.2f", 1e3 * r.secondsPerStep) << " | " << r.blocks << " | "
        << fmt("%.2f", r.bytesPerBlock * double(r.blocks) / 1e6) << " | " << fmt("%.2f", dense) << " |\n";
+  }
+  md << "\n";
+
+  // 6. A thin layer on large terrain: grid memory of the sparse grid against a dense box.
+  md << "## Sparse against dense grid memory\n\nA one-cell-thick layer (dx = 5 m, one particle per cell) "
+     << "over a square of side s at the middle height of a 1 km tall domain of the same footprint:\n\n"
+     << "| layer side (m) | particles | active blocks | grid memory (MB) | dense box of the domain (MB) |\n"
+     << "|---|---|---|---|---|\n";
+  for (double side : opt.quick ? std::vector<double>{500} : std::vector<double>{500, 1000, 2000}) {
+    char scene[1024];
+    std::snprintf(scene, sizeof scene, R"(
+[simulation]
+dx = 5.0
+particles_per_cell = 1
+end_time = 1.0
+[domain]
+min = [0, 0, 0]
+max = [%g, %g, 1000]
+[[materials]]
+name = "snow"
+preset = "snow"
+[[bodies]]
+material = "snow"
+shape = "box"
+min = [0, 0, 500]
+max = [%g, %g, 505]
+)", side, side, side, side);
+    SceneSetup s = loadSceneString(scene, "sparse-layer");
+    Simulation sim(s.settings, std::move(s.groups));
+    sim.step();
+    const double dense = side / 5 * side / 5 * 1000 / 5 * sizeof(Vec4) / 1e6;
+    md << "| " << side << " | " << sim.particleCount() << " | " << sim.grid().blockCount() << " | "
+       << fmt("%.1f", double(sim.gridBytes()) / 1e6) << " | " << fmt("%.0f", dense) << " |\n";
   }
   md << "\n";
 
