@@ -33,26 +33,7 @@ void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost) {
   cost.wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-Vec3d centreOfMass(const Simulation& sim) {
-  Vec3d c = Vec3d::Zero();
-  double m = 0;
-  for (const auto* g : sim.groups())
-    for (size_t i = 0; i < g->size(); ++i) {
-      c += double(g->particles.mass[i]) * g->particles.x[i].cast<double>();
-      m += double(g->particles.mass[i]);
-    }
-  return c / m;
-}
-
-double meanVelocityX(const Simulation& sim) {
-  double p = 0, m = 0;
-  for (const auto* g : sim.groups())
-    for (size_t i = 0; i < g->size(); ++i) {
-      p += double(g->particles.mass[i]) * double(g->particles.v[i].x());
-      m += double(g->particles.mass[i]);
-    }
-  return p / m;
-}
+double meanVelocityX(const Simulation& sim) { return sim.meanVelocity().x(); }
 
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char* fmt, ...) {
@@ -114,12 +95,12 @@ rotation = [0, 30, 20]
   SlidingBlockResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();
-  const Vec3d c0 = centreOfMass(*sim);
+  const Vec3d c0 = sim->centreOfMass();
   const double a = kG * (std::sin(kTheta) - mu * std::cos(kTheta));
   for (int i = 1; i * 0.05 <= endTime + 1e-9; ++i) {
     const double t = i * 0.05;
     sim->advanceTo(t);
-    const double disp = (centreOfMass(*sim) - c0).dot(s), exact = a > 0 ? 0.5 * a * t * t : 0.0;
+    const double disp = (sim->centreOfMass() - c0).dot(s), exact = a > 0 ? 0.5 * a * t * t : 0.0;
     res.t.push_back(t), res.s.push_back(disp), res.exact.push_back(exact);
     if (exact > 5 * dx) res.maxRelError = std::max(res.maxRelError, std::abs(disp / exact - 1));
     res.restDisplacement = std::abs(disp);
