@@ -78,6 +78,14 @@ std::vector<Case> cases(const std::string& shared) {
                },
                {10, 20, 40},
                {10}});
+  c.push_back({"column_collapse_a5", "granular column collapse (a = 5) against Lube et al. (2005)",
+               "|run-out / 1.9a^(2/3) − 1|", "cells across the column length L0",
+               [](double cells, int ppc, double cfl) {
+                 const auto r = columnCollapse(5.0, {cells, ppc, cfl});
+                 return fromCost(cells, std::abs(r.relError), r);
+               },
+               {8, 12, 16},
+               {8}});
   return c;
 }
 
