@@ -36,8 +36,10 @@ int ConfigTable::lineOf(const std::string& key) const {
 }
 
 void ConfigTable::fail(const std::string& key, const std::string& message) const {
+  auto it = key.empty() ? values_.end() : values_.find(key);
+  const bool cli = it != values_.end() && it->second.fromCommandLine;
   throw InputError(file_, key.empty() ? line_ : lineOf(key), key.empty() ? path_ : keyPath(key),
-                   message);
+                   message + (cli ? " (given with --set)" : ""));
 }
 
 void ConfigTable::missing(const std::string& key) const {
@@ -247,6 +249,7 @@ void ConfigTable::assign(const std::vector<std::string>& path, ConfigValue v) {
                                   std::get<ConfigValue::Array>(it->second.data).front().isTable())))
     throw InputError("--set", 0, dotted, "cannot replace a table with a value");
   v.line = 0;
+  v.fromCommandLine = true;
   t->values_[path.back()] = std::move(v);
 }
 

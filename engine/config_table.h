@@ -25,6 +25,7 @@ struct ConfigValue {
   std::variant<double, bool, std::string, Array, std::shared_ptr<ConfigTable>> data;
   bool isInteger = false; ///< number was written without a decimal point
   int line = 0;
+  bool fromCommandLine = false; ///< given with --set rather than in the file
 
   bool isNumber() const { return std::holds_alternative<double>(data); }
   bool isString() const { return std::holds_alternative<std::string>(data); }

@@ -190,6 +190,13 @@ Vec3d Simulation::linearMomentum() const {
   return p;
 }
 
+Vec3d Simulation::centreOfMass() const {
+  Vec3d c = Vec3d::Zero();
+  for (const auto* g : groupPtrs_)
+    for (size_t i = 0; i < g->size(); ++i) c += double(g->particles.mass[i]) * g->particles.x[i].cast<double>();
+  return c / totalMass();
+}
+
 Vec3d Simulation::angularMomentum() const {
   Vec3d L = Vec3d::Zero();
   const double d = 0.25 * settings_.dx * settings_.dx;

@@ -76,6 +76,9 @@ public:
   double totalMassRemoved() const;
 
   Vec3d linearMomentum() const;
+  /// Mass-weighted mean position (local frame) and velocity.
+  Vec3d centreOfMass() const;
+  Vec3d meanVelocity() const { return linearMomentum() / totalMass(); }
   /// About the local origin, including APIC's affine part m (dx^2/4) (C32-C23, C13-C31, C21-C12).
   Vec3d angularMomentum() const;
   double kineticEnergy() const;

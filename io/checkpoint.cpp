@@ -52,25 +52,25 @@ private:
 
 std::string checkpointPath(const std::string& dir) { return (std::filesystem::path(dir) / "checkpoint.h5").string(); }
 
-void writeCheckpoint(const std::string& path, const Simulation& sim, int nextFrame) {
+void writeCheckpoint(const std::string& path, const Simulation& sim, const std::function<void(StateArchive&)>& extra) {
   writeAtomically(path, [&](const std::string& tmp) {
     h5::Handle f = h5::createFile(tmp);
     {
       H5Archive a(f, true);
       sim.save(a);
-      a.putValue("next_frame", int32_t(nextFrame));
+      if (extra) extra(a);
     }
     h5::writeAttribute(f, "time", sim.time());
   });
 }
 
-int readCheckpoint(const std::string& path, Simulation& sim) {
+void readCheckpoint(const std::string& path, Simulation& sim, const std::function<void(const StateArchive&)>& extra) {
   if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no checkpoint to resume from");
   try {
     h5::Handle f = h5::openFile(path);
     H5Archive a(f, false);
     sim.load(a);
-    return a.getValue<int32_t>("next_frame");
+    if (extra) extra(a);
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": " + e.what());
   }

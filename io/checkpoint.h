@@ -4,6 +4,7 @@
 
 #include "engine/simulation.h"
 
+#include <functional>
 #include <string>
 
 namespace talus {
@@ -11,11 +12,14 @@ namespace talus {
 /// DIR/checkpoint.h5.
 std::string checkpointPath(const std::string& dir);
 
-/// Writes sim's state (see Simulation::save) plus `frame`, the index of the next output frame.
-void writeCheckpoint(const std::string& path, const Simulation& sim, int nextFrame);
+/// Writes sim's state (see Simulation::save) and whatever `extra` adds (the run driver's clock
+/// and its outputs' accumulated state).
+void writeCheckpoint(const std::string& path, const Simulation& sim,
+                     const std::function<void(StateArchive&)>& extra = {});
 
-/// Restores a checkpoint into a simulation built from the same scene; returns the next frame.
+/// Restores a checkpoint into a simulation built from the same scene, then calls `extra`.
 /// Throws std::runtime_error naming the file when it is missing, unreadable or does not match.
-int readCheckpoint(const std::string& path, Simulation& sim);
+void readCheckpoint(const std::string& path, Simulation& sim,
+                    const std::function<void(const StateArchive&)>& extra = {});
 
 } // namespace talus

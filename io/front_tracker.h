@@ -23,6 +23,8 @@ public:
   void onStart(const Simulation& sim) override;
   std::vector<std::string> header() const override;
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+  void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "previous", previous_); }
+  void load(const StateArchive& a, const std::string& prefix) override { previous_ = a.getValue<double>(prefix + "previous"); }
 
   /// Front position (m along the path from its first point), NaN when no bin reaches the
   /// threshold.

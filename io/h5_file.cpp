@@ -26,8 +26,16 @@ Handle openFile(const std::string& path) {
   return Handle(f, H5Fclose);
 }
 
+// No modification times in objects: identical runs then write identical files.
+Handle untimedObjects(hid_t cls) {
+  Handle p(H5Pcreate(cls), H5Pclose);
+  H5Pset_obj_track_times(p, false);
+  return p;
+}
+
 Handle createGroup(hid_t parent, const std::string& name) {
-  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  Handle gcpl = untimedObjects(H5P_GROUP_CREATE);
+  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose);
 }
 
 template <> hid_t nativeType<double>() { return H5T_NATIVE_DOUBLE; }
@@ -41,8 +49,8 @@ template <class T>
 void writeDataset(hid_t parent, const std::string& name, const T* data, size_t rows, size_t cols) {
   hsize_t dims[2] = {hsize_t(rows), hsize_t(cols)};
   Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose);
-  Handle set(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose);
+  Handle dcpl = untimedObjects(H5P_DATASET_CREATE);
+  Handle set(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
   if (rows && H5Dwrite(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw std::runtime_error("cannot write HDF5 dataset " + name);
 }

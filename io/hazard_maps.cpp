@@ -154,6 +154,24 @@ const char* HazardMaps::unit(Quantity q) {
   return s[q];
 }
 
+void HazardMaps::save(StateArchive& a, const std::string& prefix) const {
+  const Impl& m = *impl_;
+  for (size_t l = 0; l < m.maxima.size(); ++l) a.putVector(prefix + "maxima" + std::to_string(l), m.maxima[l]);
+  for (size_t l = 0; l < m.initial.size(); ++l) a.putVector(prefix + "initial" + std::to_string(l), m.initial[l]);
+  a.putVector(prefix + "cos_slope", m.cosSlope);
+  a.putValue(prefix + "last_time", m.lastTime);
+  a.putValue(prefix + "accumulations", uint64_t(accumulations_));
+}
+
+void HazardMaps::load(const StateArchive& a, const std::string& prefix) {
+  Impl& m = *impl_;
+  for (size_t l = 0; l < m.maxima.size(); ++l) a.getVector(prefix + "maxima" + std::to_string(l), m.maxima[l]);
+  for (size_t l = 0; l < m.initial.size(); ++l) a.getVector(prefix + "initial" + std::to_string(l), m.initial[l]);
+  a.getVector(prefix + "cos_slope", m.cosSlope);
+  m.lastTime = a.getValue<double>(prefix + "last_time");
+  accumulations_ = size_t(a.getValue<uint64_t>(prefix + "accumulations"));
+}
+
 void HazardMaps::onStart(const Simulation& sim) {
   Impl& m = *impl_;
   const auto& st = sim.settings();

@@ -44,6 +44,8 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   void onFinish(const Simulation& sim, bool completed) override;
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
 
   /// Quantity q on the whole grid (kNoData outside the domain), for all material (layer 0) or
   /// for material group i (layer 1 + i, when per_material). Deposit and erosion exist after

@@ -99,6 +99,7 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   s.ply = out->boolean("ply", s.ply);
   s.series = out->boolean("series", s.series);
   s.seriesInterval = out->positive("series_interval", 0, true);
+  s.checkpointInterval = out->has("checkpoint_interval") ? out->positive("checkpoint_interval", 0, true) : -1.0;
   s.plots = out->boolean("plots", s.plots);
   s.waterMaterials = readMaterialList(*out, "water_materials", materialNames);
   readMaps(*out, materialNames, s.maps);

@@ -54,6 +54,9 @@ struct MapSettings {
 struct OutputSettings {
   std::string directory = "talus_out";
   double frameInterval = 0; ///< seconds between frames; 0 writes only the final state
+  /// Seconds of simulated time between checkpoints (DIR/checkpoint.h5); 0 = none; negative =
+  /// the default, a tenth of the end time.
+  double checkpointInterval = -1;
   /// CRS of the scene's world coordinates as WKT, from `crs` ("EPSG:2056", ...); used by maps and
   /// VDB metadata when the scene has no DEM (a DEM brings its own).
   std::string crsWkt;

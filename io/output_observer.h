@@ -4,6 +4,7 @@
 #pragma once
 
 #include "engine/simulation.h"
+#include "engine/state_archive.h"
 
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ public:
   /// After the last step. `completed` is false when the run stopped on a numerical failure:
   /// particle state may then be non-finite, so "final state" outputs should be skipped.
   virtual void onFinish(const Simulation& sim, bool completed) {}
+
+  /// Checkpointing: the state accumulated since the start (maxima, rows, pending volumes), so a
+  /// resumed run writes the same files as an uninterrupted one. On resume the driver calls
+  /// onStart on the initial state first, then load.
+  virtual void save(StateArchive& a, const std::string& prefix) const {}
+  virtual void load(const StateArchive& a, const std::string& prefix) {}
 
   /// Files written so far, relative to the output directory.
   const std::vector<std::string>& files() const { return files_; }

@@ -55,6 +55,18 @@ void OutputSet::step(const Simulation& sim) {
   each([&](OutputObserver& o) { o.onStep(sim, dt); });
 }
 
+void OutputSet::save(StateArchive& a) const {
+  a.putValue("outputs/last_time", lastTime_);
+  for (size_t i = 0; i < outputs_.size(); ++i)
+    outputs_[i]->save(a, "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/");
+}
+
+void OutputSet::load(const StateArchive& a) {
+  lastTime_ = a.getValue<double>("outputs/last_time");
+  for (size_t i = 0; i < outputs_.size(); ++i)
+    outputs_[i]->load(a, "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/");
+}
+
 void OutputSet::frame(const Simulation& sim, int index) {
   each([&](OutputObserver& o) { o.onFrame(sim, index); });
 }

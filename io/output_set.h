@@ -23,6 +23,10 @@ public:
   void frame(const Simulation& sim, int index);
   void finish(const Simulation& sim, bool completed);
 
+  /// Checkpointing of every output's accumulated state (see OutputObserver::save).
+  void save(StateArchive& a) const;
+  void load(const StateArchive& a);
+
   /// Identifiers of the constructed outputs, in call order.
   std::vector<std::string> names() const;
   std::vector<OutputReport> reports() const;

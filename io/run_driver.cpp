@@ -1,5 +1,6 @@
 #include "io/run_driver.h"
 
+#include "io/checkpoint.h"
 #include "io/output_set.h"
 #include "io/particle_writer.h"
 #include "io/progress_bar.h"
@@ -8,6 +9,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -25,9 +28,33 @@ RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
   Simulation sim(scene.settings, std::move(scene.groups));
   OutputSet outputs(scene, res.outDir); // only what [output] asks for
   const double interval = scene.output.frameInterval;
-  int frame = 0;
+  const double checkpointEvery =
+      scene.output.checkpointInterval < 0 ? scene.endTime / 10 : scene.output.checkpointInterval;
+  const std::string checkpointFile = checkpointPath(res.outDir);
+  int frame = 0, checkpoints = 0;
+  double nextCheckpoint = checkpointEvery > 0 ? checkpointEvery : std::numeric_limits<double>::infinity();
+  // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
+  // resumed run then replaces their accumulated state with the checkpoint's.
   outputs.start(sim);
-  if (interval > 0) outputs.frame(sim, frame++);
+  if (opt.resume) {
+    readCheckpoint(checkpointFile, sim, [&](const StateArchive& a) {
+      outputs.load(a);
+      frame = a.getValue<int32_t>("driver/next_frame");
+      nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
+    });
+  } else if (interval > 0) {
+    outputs.frame(sim, frame++);
+  }
+  auto checkpoint = [&] {
+    writeCheckpoint(checkpointFile, sim, [&](StateArchive& a) {
+      outputs.save(a);
+      a.putValue("driver/next_frame", int32_t(frame));
+      a.putValue("driver/next_checkpoint", nextCheckpoint);
+    });
+    // Test hook: die like a killed process right after the n-th checkpoint.
+    static const char* kill = std::getenv("TALUS_TEST_EXIT_AFTER_CHECKPOINT");
+    if (kill && ++checkpoints == std::atoi(kill)) std::_Exit(137);
+  };
 
   ProgressBar bar(scene.endTime, stderr, opt.progress);
   const auto t0 = std::chrono::steady_clock::now();
@@ -42,6 +69,10 @@ RunResult runScene(SceneSetup& scene, const RunOptions& opt) {
       sim.advanceTo(next, [&] {
         outputs.step(sim);
         bar.update(sim.time(), sim.steps(), sim.particleSteps());
+        if (sim.time() >= nextCheckpoint && sim.time() < scene.endTime) {
+          nextCheckpoint += checkpointEvery;
+          checkpoint(); // the last good state: a failure later never overwrites it
+        }
       });
       // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
       // rounding of it.

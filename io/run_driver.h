@@ -12,6 +12,7 @@ struct RunOptions {
   std::string outDir;          ///< overrides [output].directory when not empty
   int threads = 0;             ///< 0 = all hardware threads
   bool progress = true;        ///< progress bar when stderr is a terminal
+  bool resume = false;         ///< continue from outDir/checkpoint.h5 instead of starting anew
 };
 
 struct RunResult {

@@ -23,6 +23,8 @@ public:
   std::vector<std::string> header() const override;
   void onStep(const Simulation& sim, double dt) override;
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+  void save(StateArchive& a, const std::string& prefix) const override { a.putVector(prefix + "volume", volume_); }
+  void load(const StateArchive& a, const std::string& prefix) override { a.getVector(prefix + "volume", volume_); }
 
   /// Signed volume (m3) per material group crossed since the last sample.
   const std::vector<double>& pendingVolume() const { return volume_; }

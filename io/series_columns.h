@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/simulation.h"
+#include "engine/state_archive.h"
 
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ public:
   /// Appends this group's values at a sample; `elapsed` is the time since the previous sample
   /// (0 at the first sample).
   virtual void sample(const Simulation& sim, double elapsed, std::vector<double>& row) = 0;
+  /// Checkpointing of what sample() depends on besides the simulation.
+  virtual void save(StateArchive& a, const std::string& prefix) const {}
+  virtual void load(const StateArchive& a, const std::string& prefix) {}
 };
 
 /// Material and section names in column names: anything but [A-Za-z0-9_.-] becomes '_'.

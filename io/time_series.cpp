@@ -86,6 +86,9 @@ public:
   }
 
 private:
+  void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "potential0", potential0_); }
+  void load(const StateArchive& a, const std::string& prefix) override { potential0_ = a.getValue<double>(prefix + "potential0"); }
+
   std::vector<std::string> names_;
   double potential0_ = 0; ///< potential energy at the first row (-m g.x, local frame)
   bool first_ = true;
@@ -140,6 +143,30 @@ void TimeSeries::onStart(const Simulation& sim) {
     for (const auto& h : c->header()) table_.header.push_back(h);
   lastSample_ = sim.time();
   sample(sim);
+}
+
+void TimeSeries::save(StateArchive& a, const std::string& prefix) const {
+  std::vector<double> flat;
+  for (const auto& r : table_.rows) flat.insert(flat.end(), r.begin(), r.end());
+  a.putVector(prefix + "rows", flat);
+  a.putValue(prefix + "row_width", uint64_t(table_.header.size()));
+  const double clock[3] = {lastSample_, nextSample_, lastDt_};
+  a.put(prefix + "clock", clock, sizeof clock);
+  for (size_t i = 0; i < columns_.size(); ++i) columns_[i]->save(a, prefix + "columns" + std::to_string(i) + "/");
+}
+
+void TimeSeries::load(const StateArchive& a, const std::string& prefix) {
+  std::vector<double> flat;
+  a.getVector(prefix + "rows", flat);
+  const size_t width = size_t(a.getValue<uint64_t>(prefix + "row_width"));
+  if (width != table_.header.size()) throw std::runtime_error("checkpoint series has different columns than the scene");
+  table_.rows.clear();
+  for (size_t i = 0; i + width <= flat.size(); i += width)
+    table_.rows.emplace_back(flat.begin() + long(i), flat.begin() + long(i + width));
+  double clock[3];
+  a.get(prefix + "clock", clock, sizeof clock);
+  lastSample_ = clock[0], nextSample_ = clock[1], lastDt_ = clock[2];
+  for (size_t i = 0; i < columns_.size(); ++i) columns_[i]->load(a, prefix + "columns" + std::to_string(i) + "/");
 }
 
 void TimeSeries::onStep(const Simulation& sim, double dt) {

@@ -30,6 +30,8 @@ public:
   void onStep(const Simulation& sim, double dt) override;
   void onFrame(const Simulation& sim, int index) override;
   void onFinish(const Simulation& sim, bool completed) override;
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
 
   const SeriesTable& table() const { return table_; }
   double interval() const { return interval_; }

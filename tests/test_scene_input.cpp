@@ -108,6 +108,10 @@ TEST(SceneInput, MissingTerrainFileIsNamed) {
   expectError(t, 19, "terrain.sdf", "file not found");
 }
 
+TEST(SceneInput, ABadValueGivenWithSetSaysSo) {
+  expectError(kGood, 0, "simulation.dx", "(given with --set)", {"simulation.dx=-1"});
+}
+
 TEST(SceneInput, BadOverrideIsNamed) {
   expectError(kGood, 0, "materials.granite.density", "no element 'granite'", {"materials.granite.density=1"});
 }

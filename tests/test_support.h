@@ -16,28 +16,8 @@ inline std::unique_ptr<Simulation> makeSimulation(const std::string& toml,
   return std::make_unique<Simulation>(s.settings, std::move(s.groups));
 }
 
-/// Mass-weighted centre of all particles (local frame).
-inline Vec3d centreOfMass(const Simulation& sim) {
-  Vec3d c = Vec3d::Zero();
-  double m = 0;
-  for (const auto* g : sim.groups())
-    for (size_t i = 0; i < g->size(); ++i) {
-      c += double(g->particles.mass[i]) * g->particles.x[i].cast<double>();
-      m += double(g->particles.mass[i]);
-    }
-  return c / m;
-}
-
-inline Vec3d meanVelocity(const Simulation& sim) {
-  Vec3d v = Vec3d::Zero();
-  double m = 0;
-  for (const auto* g : sim.groups())
-    for (size_t i = 0; i < g->size(); ++i) {
-      v += double(g->particles.mass[i]) * g->particles.v[i].cast<double>();
-      m += double(g->particles.mass[i]);
-    }
-  return v / m;
-}
+inline Vec3d centreOfMass(const Simulation& sim) { return sim.centreOfMass(); }
+inline Vec3d meanVelocity(const Simulation& sim) { return sim.meanVelocity(); }
 
 /// ../shared next to the project, or empty when absent (tests then skip).
 inline std::string sharedDir() {

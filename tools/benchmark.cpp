@@ -149,9 +149,79 @@ std::vector<std::string> benchmarkCaseNames() {
   return n;
 }
 
+namespace {
+
+BenchResult timeSteps(const std::string& name, Simulation& sim, int threads, int warmup, int steps) {
+  for (int i = 0; i < warmup; ++i) sim.step();
+  const PhaseTimes before = sim.phaseTimes();
+  const uint64_t ps0 = sim.particleSteps();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < steps; ++i) sim.step();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const PhaseTimes& after = sim.phaseTimes();
+  BenchResult r;
+  r.name = name;
+  r.threads = threads;
+  r.particles = sim.particleCount();
+  r.blocks = sim.grid().blockCount();
+  r.steps = steps;
+  r.particleStepsPerSecond = double(sim.particleSteps() - ps0) / wall;
+  r.binShare = (after.bin - before.bin) / wall;
+  r.p2gShare = (after.p2g - before.p2g) / wall;
+  r.gridShare = (after.grid - before.grid) / wall;
+  r.g2pShare = (after.g2p - before.g2p) / wall;
+  r.otherShare = 1 - r.binShare - r.p2gShare - r.gridShare - r.g2pShare;
+  r.bytesPerParticle = double(sim.particleBytes()) / double(sim.particleCount());
+  r.bytesPerBlock = double(sim.gridBytes()) / double(std::max<size_t>(1, r.blocks));
+  r.secondsPerStep = wall / steps;
+  return r;
+}
+
+} // namespace
+
+BenchResult measureScaling(double particleScale, double domainScale, int steps) {
+  const double dx = 0.02 / std::cbrt(particleScale);
+  // The elastic slab of the "elastic" case; the domain grows around it with domainScale.
+  const double cx = 0.7, cy = 0.45;
+  const double hx = 0.7 * domainScale, hy = 0.45 * domainScale, hz = 0.8 * domainScale;
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, R"(
+[simulation]
+dx = %.6g
+particles_per_cell = 8
+end_time = 10
+[domain]
+min = [%.6g, %.6g, 0]
+max = [%.6g, %.6g, %.6g]
+walls = "slip"
+[[materials]]
+name = "jelly"
+model = "elastic"
+density = 1000
+youngs_modulus = 2e5
+poisson_ratio = 0.3
+[[bodies]]
+material = "jelly"
+shape = "box"
+min = [0.2, 0.2, 0.06]
+max = [1.2, 0.7, 0.56]
+velocity = [0.5, 0, -1]
+)", dx, cx - hx, cy - hy, cx + hx, cy + hy, hz);
+  SceneSetup s = loadSceneString(buf, "bench:scaling");
+  Simulation sim(s.settings, std::move(s.groups));
+  return timeSteps("scaling", sim, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)), 10, steps);
+}
+
 int runBenchmarks(const BenchOptions& opt) {
-  std::printf("%-10s %7s %9s %7s %12s %12s %7s %7s %7s %7s %7s %8s %8s\n", "case", "threads", "particles", "steps",
-              "p-steps/s", "per core", "bin%", "p2g%", "grid%", "g2p%", "other%", "B/part", "KB/block");
+  measureBenchmarks(opt, true);
+  return 0;
+}
+
+std::vector<BenchResult> measureBenchmarks(const BenchOptions& opt, bool print) {
+  std::vector<BenchResult> results;
+  if (print)
+    std::printf("%-10s %7s %9s %7s %12s %12s %7s %7s %7s %7s %7s %8s %8s\n", "case", "threads", "particles", "steps",
+                "p-steps/s", "per core", "bin%", "p2g%", "grid%", "g2p%", "other%", "B/part", "KB/block");
   for (const std::string& name : opt.cases) {
     auto it = cases().find(name);
     if (it == cases().end()) throw std::runtime_error("unknown benchmark case '" + name + "'");
@@ -166,29 +236,21 @@ int runBenchmarks(const BenchOptions& opt) {
                          ? loadSceneString(defaultSceneText(), "bench:" + name, {"simulation.dx=" + std::string(dxs)})
                          : loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
       Simulation sim(s.settings, std::move(s.groups));
-      for (int i = 0; i < opt.warmup; ++i) sim.step();
-      const PhaseTimes before = sim.phaseTimes();
-      const uint64_t ps0 = sim.particleSteps();
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int i = 0; i < opt.steps; ++i) sim.step();
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const PhaseTimes& after = sim.phaseTimes();
-      const double pss = double(sim.particleSteps() - ps0) / wall;
+      BenchResult r = timeSteps(name, sim, threads, opt.warmup, opt.steps);
+      const double pss = r.particleStepsPerSecond;
       if (threads == 1) oneThread = pss;
-      auto pct = [&](double a, double b) { return 100.0 * (a - b) / wall; };
-      const double other = wall - (after.total() - before.total()) + (after.terrain - before.terrain) +
-                           (after.cull - before.cull);
-      std::printf("%-10s %7d %9zu %7d %12.3e %12.3e %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f\n", name.c_str(),
-                  threads, sim.particleCount(), opt.steps, pss, pss / threads, pct(after.bin, before.bin),
-                  pct(after.p2g, before.p2g), pct(after.grid, before.grid), pct(after.g2p, before.g2p),
-                  100.0 * other / wall, double(sim.particleBytes()) / double(sim.particleCount()),
-                  double(sim.gridBytes()) / 1024.0 / double(std::max<size_t>(1, sim.grid().blockCount())));
-      if (threads > 1 && oneThread > 0)
-        std::printf("%-10s %7s parallel efficiency at %d threads: %.0f%%\n", "", "", threads,
-                    100.0 * pss / (threads * oneThread));
+      if (threads > 1 && oneThread > 0) r.efficiency = pss / (threads * oneThread);
+      if (print) {
+        std::printf("%-10s %7d %9zu %7d %12.3e %12.3e %7.1f %7.1f %7.1f %7.1f %7.1f %8.1f %8.1f\n", name.c_str(),
+                    threads, r.particles, opt.steps, pss, pss / threads, 100 * r.binShare, 100 * r.p2gShare,
+                    100 * r.gridShare, 100 * r.g2pShare, 100 * r.otherShare, r.bytesPerParticle, r.bytesPerBlock / 1024);
+        if (r.efficiency > 0)
+          std::printf("%-10s %7s parallel efficiency at %d threads: %.0f%%\n", "", "", threads, 100 * r.efficiency);
+      }
+      results.push_back(r);
     }
   }
-  return 0;
+  return results;
 }
 
 } // namespace talus

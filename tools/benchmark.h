@@ -14,7 +14,26 @@ struct BenchOptions {
   double scale = 1; ///< multiplies the particle count (approximately)
 };
 
+/// One benchmark measurement.
+struct BenchResult {
+  std::string name;
+  int threads = 1;
+  size_t particles = 0, blocks = 0;
+  int steps = 0;
+  double particleStepsPerSecond = 0;
+  double binShare = 0, p2gShare = 0, gridShare = 0, g2pShare = 0, otherShare = 0; ///< of wall time
+  double bytesPerParticle = 0, bytesPerBlock = 0;
+  double secondsPerStep = 0;
+  double efficiency = 0; ///< against the 1-thread run of the same case (0 when none)
+};
+
 std::vector<std::string> benchmarkCaseNames();
+/// Runs the cases; `print` writes the table to stdout as it goes.
+std::vector<BenchResult> measureBenchmarks(const BenchOptions& options, bool print);
 int runBenchmarks(const BenchOptions& options);
+
+/// Time per step and grid memory of an elastic slab of `particles` particles (approximately)
+/// in a domain `domainScale` times larger in each direction than the slab needs.
+BenchResult measureScaling(double particleScale, double domainScale, int steps);
 
 } // namespace talus

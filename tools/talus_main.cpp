@@ -6,6 +6,7 @@
 #include "io/toml_reader.h"
 #include "tools/analysis_commands.h"
 #include "tools/benchmark.h"
+#include "tools/work_precision.h"
 #include "tools/terrain_command.h"
 
 #include <CLI/CLI.hpp>
@@ -22,12 +23,15 @@ SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) 
 }
 
 int cmdRun(const std::string& scene, const std::string& out, int threads, const std::vector<std::string>& sets,
-           bool quiet) {
+           bool quiet, const std::string& resume) {
+  if (!resume.empty() && !out.empty() && out != resume)
+    throw InputError("--out", 0, "", "--resume continues in its own directory; do not give a different --out");
   SceneSetup setup = load(scene, sets);
   if (!quiet)
     for (const auto& n : setup.notes) std::fprintf(stderr, "talus: %s\n", n.c_str());
   RunOptions opt;
-  opt.outDir = out;
+  opt.outDir = resume.empty() ? out : resume;
+  opt.resume = !resume.empty();
   opt.threads = threads;
   opt.progress = !quiet;
   size_t n = 0;
@@ -70,12 +74,27 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "Worker threads (default: all)")->check(CLI::NonNegativeNumber);
   run->add_option("--set", sets, "Override a scene key: --set simulation.dx=0.02");
   run->add_flag("--quiet", quiet, "No progress bar or messages");
+  std::string resume;
+  run->add_option("--resume", resume, "Continue the run in DIR from DIR/checkpoint.h5 (same scene)");
 
   auto* check = app.add_subcommand("check", "Validate a scene and report the particles each body seeds");
   check->add_option("scene", scene, "Scene file (TOML)");
   check->add_option("--set", sets, "Override a scene key");
 
   auto* defaults = app.add_subcommand("default-scene", "Print the embedded default scene");
+
+  WorkPrecisionOptions wp;
+  std::string single;
+  double singleCells = 0;
+  auto* wpCmd = app.add_subcommand("work-precision",
+                                   "Refine the validation cases; write docs/performance.md and its error-vs-time plot");
+  wpCmd->add_option("--out", wp.markdown, "Markdown report");
+  wpCmd->add_option("--image", wp.image, "PNG plot of error against wall time");
+  wpCmd->add_option("--shared", wp.sharedDir, "The ../shared directory (dam-break data)");
+  wpCmd->add_option("--double", wp.doubleBinary, "A talus built with -DTALUS_DOUBLE=ON");
+  wpCmd->add_flag("--quick", wp.quick, "Fewer, coarser runs");
+  wpCmd->add_option("--single", single, "Run one case and print: error wall particles steps");
+  wpCmd->add_option("--cells", singleCells, "Resolution for --single");
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
@@ -93,9 +112,10 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*run) return cmdRun(scene, out, threads, sets, quiet);
+    if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
     if (*benchCmd) return runBenchmarks(bench);
+    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, 8, 0.4, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
