@@ -100,10 +100,15 @@ analyse_whymper() {
   "$talus" profile "$d/maps/max_speed.tif" --label "glacier" --line "2600450,1200150 2601790,1200150" \
     --step 5 --out "$a/max_speed_glacier.csv" > /dev/null
   {
+    # The resting snow cover is >= 0.5 m everywhere along both corridors, so run-out is read from
+    # where anything moved (maximum speed) and from the ice alone.
     for p in "couloir 2600450,1200400 2601790,1200400" "glacier 2600450,1200150 2601790,1200150"; do
       set -- $p
-      echo "# run-out along the $1 track (flow height >= 0.5 m within 60 m of it)"
-      "$talus" map-stats "$d/maps/max_flow_height_vertical.tif" --threshold 0.5 --path "$2 $3" --half-width 60
+      echo "# run-out along the $1 track: maximum speed >= 1 and 5 m/s within 60 m of it"
+      "$talus" map-stats "$d/maps/max_speed.tif" --threshold 1 --threshold 5 --path "$2 $3" --half-width 60
+      echo "# run-out along the $1 track: ice flow height >= 0.5 m, ice deposit >= 0.1 m"
+      "$talus" map-stats "$d/maps/ice/max_flow_height_vertical.tif" --threshold 0.5 --path "$2 $3" --half-width 60
+      "$talus" map-stats "$d/maps/ice/deposit_thickness.tif" --threshold 0.1 --path "$2 $3" --half-width 60
     done
   } > "$a/runout.txt"
 }
