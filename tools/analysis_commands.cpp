@@ -121,12 +121,12 @@ int runMapStats(const AnalysisOptions& o) {
 }
 
 int runCompare(const AnalysisOptions& o) {
-  const DemRaster simRaw = readRaster(o.rasters.at(0));
+  const DemRaster simRaw = readRaster(o.simulation);
   const DemRaster ref = readRaster(o.reference);
   const DemRaster sim = resample(simRaw, ref.grid);
   Polyline path;
   if (!o.path.empty()) path = Polyline::parse(o.path);
-  std::printf("simulation %s (%d x %d cells of %g m), resampled bilinearly onto\n", o.rasters[0].c_str(), simRaw.grid.nx,
+  std::printf("simulation %s (%d x %d cells of %g m), resampled bilinearly onto\n", o.simulation.c_str(), simRaw.grid.nx,
               simRaw.grid.ny, simRaw.grid.cellSize);
   std::printf("reference  %s (%d x %d cells of %g m); cells without data in either are skipped\n", o.reference.c_str(),
               ref.grid.nx, ref.grid.ny, ref.grid.cellSize);
@@ -148,7 +148,7 @@ int runCompare(const AnalysisOptions& o) {
     QuicklookStyle st;
     st.title = o.title.empty() ? "Simulation against reference" : o.title;
     char sub[160];
-    std::snprintf(sub, sizeof sub, "cells reaching %g: %s", ts.front(), defaultLabel(o.rasters[0]).c_str());
+    std::snprintf(sub, sizeof sub, "cells reaching %g: %s", ts.front(), defaultLabel(o.simulation).c_str());
     st.subtitle = sub;
     st.classes = {{"reference only", {0.17, 0.45, 0.80}}, {"both", {0.45, 0.25, 0.55}}, {"Talus only", {0.85, 0.25, 0.15}}};
     writeMapQuicklook(o.png, ref.grid, overlapClasses(sim, ref, ts.front()), heights, st, -9999);
@@ -280,7 +280,7 @@ AnalysisCommands addAnalysisCommands(CLI::App& app, AnalysisOptions& o) {
       ->check(CLI::PositiveNumber);
 
   c.compare = app.add_subcommand("compare", "Compare a simulated map with a reference raster on the reference's grid");
-  c.compare->add_option("simulation", o.rasters, "Simulated map raster")->required()->expected(1);
+  c.compare->add_option("simulation", o.simulation, "Simulated map raster")->required();
   c.compare->add_option("reference", o.reference, "Reference raster (e.g. AvaFrame *_pft.asc)")->required();
   c.compare->add_option("--threshold", o.thresholds, "Thresholds (repeatable; default > 0)");
   c.compare->add_option("--path", o.path, "Path \"x,y x,y ...\" or a line file: run-out along it");

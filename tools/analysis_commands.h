@@ -19,7 +19,7 @@ struct AnalysisOptions {
   double step = 0; ///< 0: the first raster's cell size
   // map-stats / compare
   std::vector<double> thresholds;
-  std::string path, reference, dem, png;
+  std::string path, simulation, reference, dem, png;
   double halfWidth = std::numeric_limits<double>::infinity();
   // series-stats
   std::string series;
