@@ -292,8 +292,9 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
 
   // 4. Throughput of every benchmark case.
   md << "## Throughput\n\n`talus bench`: particle-steps per second per core, time per phase, memory. On this\n"
-        "shared 2-vCPU VM the 2-thread figures scatter between runs, more than the 1-thread ones (the same build measured 91-98 % efficiency for the 250 000-particle\n"
-        "cases with `talus bench` alone).\n\n"
+        "shared 2-vCPU VM the 2-thread figures scatter between runs, more than the 1-thread ones (the\n"
+        "same build measured 91-98 % efficiency for the 250 000-particle cases with `talus bench`\n"
+        "alone).\n\n"
      << "| case | threads | particles | p-steps/s per core | efficiency | bin | P2G | grid | G2P | bytes/particle | KB/block |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   BenchOptions bo;
