@@ -1,33 +1,15 @@
 // Grid memory follows the material, not the domain's bounding box.
 #include "test_support.h"
+#include "tools/validation_cases.h"
 
 #include <gtest/gtest.h>
 
 using namespace talus;
 
 namespace {
+/// The layer over a 1 km square domain.
 std::string layerScene(double layerSide, double domainHeight) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf, R"(
-[simulation]
-dx = 5.0
-particles_per_cell = 1
-end_time = 1.0
-[domain]
-min = [0, 0, 0]
-max = [1000, 1000, %g]
-[[materials]]
-name = "snowlike"
-model = "elastic"
-density = 300
-youngs_modulus = 1e6
-[[bodies]]
-material = "snowlike"
-shape = "box"
-min = [0, 0, 500]
-max = [%g, %g, 505]
-)", domainHeight, layerSide, layerSide);
-  return buf;
+  return validation::thinLayerScene(layerSide, 1000, domainHeight);
 }
 } // namespace
 

@@ -180,34 +180,14 @@ BenchResult timeSteps(const std::string& name, Simulation& sim, int threads, int
 } // namespace
 
 BenchResult measureScaling(double particleScale, double domainScale, int steps) {
-  const double dx = 0.02 / std::cbrt(particleScale);
-  // The elastic slab of the "elastic" case; the domain grows around it with domainScale.
+  char dx[32], lo[96], hi[96];
+  std::snprintf(dx, sizeof dx, "%.6g", 0.02 / std::cbrt(particleScale));
+  // The elastic case's slab; its domain ([0, 1.4] x [0, 0.9] x [0, 0.8]) grows around it.
   const double cx = 0.7, cy = 0.45;
   const double hx = 0.7 * domainScale, hy = 0.45 * domainScale, hz = 0.8 * domainScale;
-  char buf[1024];
-  std::snprintf(buf, sizeof buf, R"(
-[simulation]
-dx = %.6g
-particles_per_cell = 8
-end_time = 10
-[domain]
-min = [%.6g, %.6g, 0]
-max = [%.6g, %.6g, %.6g]
-walls = "slip"
-[[materials]]
-name = "jelly"
-model = "elastic"
-density = 1000
-youngs_modulus = 2e5
-poisson_ratio = 0.3
-[[bodies]]
-material = "jelly"
-shape = "box"
-min = [0.2, 0.2, 0.06]
-max = [1.2, 0.7, 0.56]
-velocity = [0.5, 0, -1]
-)", dx, cx - hx, cy - hy, cx + hx, cy + hy, hz);
-  SceneSetup s = loadSceneString(buf, "bench:scaling");
+  std::snprintf(lo, sizeof lo, "domain.min=[%.6g,%.6g,0]", cx - hx, cy - hy);
+  std::snprintf(hi, sizeof hi, "domain.max=[%.6g,%.6g,%.6g]", cx + hx, cy + hy, hz);
+  SceneSetup s = loadSceneString(substitute(kElastic, "%DX%", dx), "bench:scaling", {lo, hi});
   Simulation sim(s.settings, std::move(s.groups));
   return timeSteps("scaling", sim, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)), 10, steps);
 }

@@ -267,4 +267,28 @@ max = [%.9g, %.9g, %.9g]
   return res;
 }
 
+std::string thinLayerScene(double layerSide, double domainSide, double domainHeight) {
+  char buf[1024];
+  std::snprintf(buf, sizeof buf, R"(
+[simulation]
+dx = 5.0
+particles_per_cell = 1
+end_time = 1.0
+[domain]
+min = [0, 0, 0]
+max = [%g, %g, %g]
+[[materials]]
+name = "snowlike"
+model = "elastic"
+density = 300
+youngs_modulus = 1e6
+[[bodies]]
+material = "snowlike"
+shape = "box"
+min = [0, 0, 500]
+max = [%g, %g, 505]
+)", domainSide, domainSide, domainHeight, layerSide, layerSide);
+  return buf;
+}
+
 } // namespace talus::validation

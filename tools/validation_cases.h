@@ -55,4 +55,9 @@ struct ColumnCollapseResult : RunCost {
 };
 ColumnCollapseResult columnCollapse(double aspect, const Resolution& r);
 
+/// A one-cell-thick elastic layer (dx = 5 m, one particle per cell, 5 m thick at z = 500 m) over
+/// a layerSide square in a domainSide x domainSide x domainHeight box: what the sparse grid must
+/// store in proportion to the layer, not the box (test_sparse_grid, `talus work-precision`).
+std::string thinLayerScene(double layerSide, double domainSide, double domainHeight);
+
 } // namespace talus::validation

@@ -338,25 +338,7 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
      << "| layer side (m) | particles | active blocks | grid memory (MB) | dense box of the domain (MB) |\n"
      << "|---|---|---|---|---|\n";
   for (double side : opt.quick ? std::vector<double>{500} : std::vector<double>{500, 1000, 2000}) {
-    char scene[1024];
-    std::snprintf(scene, sizeof scene, R"(
-[simulation]
-dx = 5.0
-particles_per_cell = 1
-end_time = 1.0
-[domain]
-min = [0, 0, 0]
-max = [%g, %g, 1000]
-[[materials]]
-name = "snow"
-preset = "snow"
-[[bodies]]
-material = "snow"
-shape = "box"
-min = [0, 0, 500]
-max = [%g, %g, 505]
-)", side, side, side, side);
-    SceneSetup s = loadSceneString(scene, "sparse-layer");
+    SceneSetup s = loadSceneString(validation::thinLayerScene(side, side, 1000), "sparse-layer");
     Simulation sim(s.settings, std::move(s.groups));
     sim.step();
     const double dense = side / 5 * side / 5 * 1000 / 5 * sizeof(Vec4) / 1e6;
