@@ -2,7 +2,7 @@
 // and a level-set cache that does not touch the user's ~/.cache.
 #pragma once
 
-#include "io/dem_raster.h"
+#include "io/terrain/dem_raster.h"
 #include "test_support.h"
 
 #include <cstdlib>

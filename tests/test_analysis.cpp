@@ -1,6 +1,6 @@
 // Post-processing (tools/analysis): raster sampling, profiles, map statistics, comparisons with a
 // reference, series summaries; and the probe that moves with the flow ([[output.probes]]).
-#include "io/run_driver.h"
+#include "io/run/run_driver.h"
 #include "terrain_test_support.h"
 #include "tools/analysis.h"
 
@@ -219,7 +219,7 @@ materials = ["still"]
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(s, opt).ok);
+  ASSERT_TRUE(runScene(std::move(s), opt).ok);
   const SeriesTable t = readSeries(dir + "/series.csv");
   const int sp = t.column("probe_speed_m_s_p0"), px = t.column("probe_x_m_p0"), py = t.column("probe_y_m_p0"),
             pz = t.column("probe_z_m_p0");
@@ -260,7 +260,7 @@ point = [8, 8, 8]
 )",
                                    "probe_bad.toml");
   try {
-    runScene(bad, opt);
+    runScene(std::move(bad), opt);
     ADD_FAILURE() << "a probe without material at its point was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("probe 'probe0'"), std::string::npos) << e.what();

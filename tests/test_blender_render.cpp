@@ -1,7 +1,7 @@
 // End to end: Blender (Debian's 3.4, when installed) imports a VDB frame as a volume object in
 // background mode, finds its grids at the right world position, and renders a small PNG with
 // Cycles (denoising off: Debian's Blender has no denoiser). Skipped when blender is absent.
-#include "io/vdb_frame_writer.h"
+#include "io/output/vdb_frame_writer.h"
 #include "test_support.h"
 
 #include <array>

@@ -1,5 +1,5 @@
 // Checkpoints: a run resumed from a checkpoint ends bit-identical to an uninterrupted one.
-#include "io/checkpoint.h"
+#include "io/run/checkpoint.h"
 #include "test_support.h"
 
 #include <cstring>

@@ -1,7 +1,7 @@
 // The fuzz target's contract, checked on its seed inputs in the normal suite: every input ends
 // in a scene or an InputError, never another exception.
-#include "engine/input_error.h"
-#include "io/scene.h"
+#include "io/config/input_error.h"
+#include "io/scene/scene.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,8 +1,8 @@
 // Hazard maps: GeoTIFFs on the DEM's grid and CRS that gdalinfo reads, with values checked
 // against a slab of known thickness moving at a known speed over a known slope.
-#include "io/dem_raster.h"
-#include "io/hazard_maps.h"
-#include "io/run_driver.h"
+#include "io/terrain/dem_raster.h"
+#include "io/output/hazard_maps.h"
+#include "io/run/run_driver.h"
 #include "test_support.h"
 
 #include <array>
@@ -166,7 +166,7 @@ TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(scene, opt).ok);
+  ASSERT_TRUE(runScene(std::move(scene), opt).ok);
 
   // 8 maps for all material (with erosion, initial thickness and the ground), 6 for rock (not
   // erodible), 7 for snow.
@@ -254,7 +254,7 @@ quicklook = false
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(scene, opt).ok);
+  ASSERT_TRUE(runScene(std::move(scene), opt).ok);
   RasterGrid g;
   g.nx = 16, g.ny = 8, g.cellSize = 0.25, g.originX = 2600000, g.originY = 1200002;
   EXPECT_EQ(checkWithGdalinfo(dir + "/maps", g, "ID[\"EPSG\",2056]"), 6); // no ground without a DEM
@@ -273,7 +273,10 @@ TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {
   MapSettings ms;
   ms.enabled = true;
   ms.perMaterial = true;
-  const RasterGrid grid = HazardMaps::domainGrid(sim->settings(), 0.15, "");
+  RunContext run;
+  run.origin = sim->settings().origin;
+  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
+  const RasterGrid grid = HazardMaps::domainGrid(run, 0.15);
   HazardMaps one(test::tempDir("maps_threads"), grid, nullptr, ms), two(test::tempDir("maps_threads"), grid, nullptr, ms);
   auto with = [](int threads, auto&& f) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));

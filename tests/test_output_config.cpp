@@ -1,6 +1,6 @@
 // [output] keys: defaults, every key read, bad values named by file, line and key; and only the
 // outputs a scene asks for are constructed (a scene without maps builds no map accumulator).
-#include "io/output_set.h"
+#include "io/output/output_set.h"
 #include "test_support.h"
 
 #include <algorithm>
@@ -152,7 +152,7 @@ TEST(OutputSet, OnlyRequestedOutputsAreConstructed) {
   const std::string dir = test::tempDir("output_set");
   auto names = [&](const std::vector<std::string>& sets) {
     const SceneSetup s = loadSceneString(kScene, "test.toml", sets);
-    return OutputSet(s, dir).names();
+    return OutputSet(s.output, s.runContext(), dir).names();
   };
   using V = std::vector<std::string>;
   // No frame interval: no frame writers; no maps requested: no map accumulator.

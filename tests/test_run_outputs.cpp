@@ -1,6 +1,6 @@
 // `talus run` outputs: particles.h5 layout and summary.json contents.
-#include "io/h5_file.h"
-#include "io/run_driver.h"
+#include "io/common/h5_file.h"
+#include "io/run/run_driver.h"
 #include "test_support.h"
 
 #include <fstream>
@@ -18,7 +18,7 @@ TEST(RunOutputs, ParticlesH5AndSummaryJsonDescribeTheFinalState) {
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  const RunResult r = runScene(scene, opt);
+  const RunResult r = runScene(std::move(scene), opt);
   ASSERT_TRUE(r.ok) << r.error;
 
   h5::Handle f = h5::openFile(dir + "/particles.h5");

@@ -4,7 +4,7 @@
 // change that moves any bit of any particle fails here. Other builds (double, sanitizers, clang)
 // round differently and skip. To re-record after an intended change of the numerics:
 //   TALUS_RECORD_CHECKSUMS=1 build/tests/talus_tests --gtest_filter='SceneChecksums.*'
-#include "io/scene.h"
+#include "io/scene/scene.h"
 #include "terrain_test_support.h"
 
 #include <cstdio>

@@ -1,5 +1,5 @@
 // Scene files: overrides, and bad input reported with file, line and key.
-#include "io/toml_reader.h"
+#include "io/config/toml_reader.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>

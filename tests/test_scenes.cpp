@@ -1,7 +1,7 @@
 // The shipped cascade scenes (data/scenes/*.toml, docs/scenes/*.md) load and run a few steps with
 // every output they ask for, at a coarser grid so CI stays fast. tools/run_scenes.sh runs each to
 // its end (not in CI). The Wolfsgruben scene reads ../shared and skips without it.
-#include "io/run_driver.h"
+#include "io/run/run_driver.h"
 #include "terrain_test_support.h"
 #include "tools/analysis.h"
 
@@ -39,7 +39,7 @@ Ran runShort(const std::string& name, std::vector<std::string> overrides) {
   RunOptions opt;
   opt.outDir = r.dir;
   opt.progress = false;
-  const RunResult res = runScene(s, opt);
+  const RunResult res = runScene(std::move(s), opt);
   EXPECT_TRUE(res.ok) << name << ": " << res.error;
   std::ifstream in(r.dir + "/summary.json");
   std::stringstream ss;

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "engine/simulation.h"
-#include "io/scene.h"
+#include "io/scene/scene.h"
 
 #include <filesystem>
 #include <memory>

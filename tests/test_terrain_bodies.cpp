@@ -1,6 +1,6 @@
 // Terrain bodies (kind = release | layer | water | fixed): seeded volumes against analytic
 // volumes, ground edits (carved releases, fixed regions), and clear errors for bad polygons.
-#include "io/terrain_loader.h"
+#include "io/terrain/terrain_loader.h"
 #include "terrain_test_support.h"
 
 #include <cmath>

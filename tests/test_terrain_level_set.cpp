@@ -1,8 +1,8 @@
 // DEM -> level set: true distances in the band, voxels on the simulation's grid nodes, the zero
 // level through the DEM's cell-centre elevations, metadata, and the scene's level-set cache.
-#include "engine/level_set_terrain.h"
-#include "io/dem_level_set.h"
-#include "io/terrain_loader.h"
+#include "io/terrain/level_set_terrain.h"
+#include "io/terrain/dem_level_set.h"
+#include "io/terrain/terrain_loader.h"
 #include "terrain_test_support.h"
 
 #include <algorithm>

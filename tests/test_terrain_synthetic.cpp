@@ -1,6 +1,6 @@
 // Synthetic alpine DEMs: their defining geometry, georeferencing, and scenes that use them.
-#include "io/synthetic_dem.h"
-#include "io/toml_reader.h"
+#include "io/terrain/synthetic_dem.h"
+#include "io/config/toml_reader.h"
 #include "terrain_test_support.h"
 
 #include <cmath>

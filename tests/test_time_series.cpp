@@ -1,6 +1,6 @@
 // series.csv against analytic motion: kinetic energy of free fall, discharge of a uniform stream
 // through sections, the front of a translating slab along a path; and the plots drawn from it.
-#include "io/run_driver.h"
+#include "io/run/run_driver.h"
 #include "test_support.h"
 
 #include <cairo.h>
@@ -46,7 +46,7 @@ RunResult run(const std::string& scene, const std::string& dir) {
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  return runScene(s, opt);
+  return runScene(std::move(s), opt);
 }
 
 } // namespace
@@ -181,7 +181,7 @@ TEST(OutputSeries, FrontOfATranslatingSlabIsTrackedToOneCell) {
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(s, opt).ok);
+  ASSERT_TRUE(runScene(std::move(s), opt).ok);
   const Csv c = readCsv(dir + "/series.csv");
   ASSERT_EQ(c.rows.size(), 5u);
   const size_t t = c.col("time_s"), f = c.col("front_m_axis"), v = c.col("front_speed_m_s_axis");
@@ -261,7 +261,7 @@ materials = ["cover"]
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(s, opt).ok);
+  ASSERT_TRUE(runScene(std::move(s), opt).ok);
   const Csv c = readCsv(dir + "/series.csv");
   const size_t t = c.col("time_s"), all = c.col("front_m_all"), moving = c.col("front_m_moving"),
                cover = c.col("front_m_cover_only");
@@ -310,7 +310,7 @@ max = [1.8, 0.8, 1004]
     RunOptions opt;
     opt.outDir = dir;
     opt.progress = false;
-    ASSERT_TRUE(runScene(s, opt).ok);
+    ASSERT_TRUE(runScene(std::move(s), opt).ok);
     const Csv c = readCsv(dir + "/series.csv");
     const size_t z = c.col("max_water_surface_m");
     // Detected by model, or the materials listed (here, to check the key, the rock).
@@ -327,7 +327,7 @@ max = [1.8, 0.8, 1004]
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(s, opt).ok);
+  ASSERT_TRUE(runScene(std::move(s), opt).ok);
   std::ifstream in(dir + "/series.csv");
   std::string header;
   std::getline(in, header);

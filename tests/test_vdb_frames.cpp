@@ -1,9 +1,9 @@
 // Frame files read back with their own readers: VDB volumes and points through OpenVDB, PLY
 // through its header and binary layout. Values are checked against sums computed here from the
 // particles with the quadratic B-spline, not against the writer's own scatter.
-#include "io/ply_writer.h"
-#include "io/run_driver.h"
-#include "io/vdb_frame_writer.h"
+#include "io/output/ply_writer.h"
+#include "io/run/run_driver.h"
+#include "io/output/vdb_frame_writer.h"
 #include "test_support.h"
 
 #include <cstring>
@@ -236,7 +236,7 @@ TEST(OutputFrames, EveryFrameIsWrittenIncludingOneAtTheEndTime) {
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
-  ASSERT_TRUE(runScene(s, opt).ok);
+  ASSERT_TRUE(runScene(std::move(s), opt).ok);
   for (int f = 0; f <= 3; ++f)
     for (const char* stem : {"volume", "particles"}) {
       char name[64];

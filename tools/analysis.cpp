@@ -1,6 +1,6 @@
 #include "tools/analysis.h"
 
-#include "io/dem_raster.h"
+#include "io/terrain/dem_raster.h"
 
 #include <algorithm>
 #include <cmath>

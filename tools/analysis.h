@@ -5,8 +5,8 @@
 // to rest, discharged volumes, front speed against distance).
 #pragma once
 
-#include "io/raster_grid.h"
-#include "io/time_series.h"
+#include "io/common/raster_grid.h"
+#include "io/output/time_series.h"
 
 #include <Eigen/Dense>
 #include <limits>

@@ -1,8 +1,8 @@
 #include "tools/analysis_commands.h"
 
-#include "io/dem_raster.h"
-#include "io/map_quicklook.h"
-#include "io/series_plots.h"
+#include "io/terrain/dem_raster.h"
+#include "io/output/map_quicklook.h"
+#include "io/output/series_plots.h"
 #include "tools/analysis.h"
 
 #include <CLI/CLI.hpp>

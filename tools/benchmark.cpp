@@ -1,6 +1,6 @@
 #include "tools/benchmark.h"
 
-#include "io/scene.h"
+#include "io/scene/scene.h"
 
 #include <chrono>
 #include <cmath>

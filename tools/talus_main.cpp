@@ -1,9 +1,9 @@
 // The `talus` command line: run scenes, check them, and (later) prepare terrain and benchmarks.
-#include "engine/input_error.h"
-#include "io/dem_raster.h"
-#include "io/run_driver.h"
-#include "io/scene.h"
-#include "io/toml_reader.h"
+#include "io/config/input_error.h"
+#include "io/terrain/dem_raster.h"
+#include "io/run/run_driver.h"
+#include "io/scene/scene.h"
+#include "io/config/toml_reader.h"
 #include "tools/analysis_commands.h"
 #include "tools/benchmark.h"
 #include "tools/work_precision.h"
@@ -39,7 +39,7 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   if (!quiet)
     std::fprintf(stderr, "talus: %s: %zu particles, dx %g m, end time %g s\n", setup.file.c_str(), n,
                  setup.settings.dx, setup.endTime);
-  const RunResult r = runScene(setup, opt);
+  const RunResult r = runScene(std::move(setup), opt);
   if (!r.ok) {
     std::fprintf(stderr, "talus: run stopped: %s\n", r.error.c_str());
     return 3;

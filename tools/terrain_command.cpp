@@ -1,10 +1,10 @@
 #include "tools/terrain_command.h"
 
-#include "engine/input_error.h"
-#include "io/dem_level_set.h"
-#include "io/dem_raster.h"
-#include "io/synthetic_dem.h"
-#include "io/toml_reader.h"
+#include "io/config/input_error.h"
+#include "io/terrain/dem_level_set.h"
+#include "io/terrain/dem_raster.h"
+#include "io/terrain/synthetic_dem.h"
+#include "io/config/toml_reader.h"
 
 #include <CLI/CLI.hpp>
 #include <chrono>

@@ -1,7 +1,7 @@
 #include "tools/validation_cases.h"
 
 #include "engine/simulation.h"
-#include "io/scene.h"
+#include "io/scene/scene.h"
 
 #include <chrono>
 #include <cstdarg>

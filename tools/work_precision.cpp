@@ -2,8 +2,8 @@
 
 #include "engine/types.h"
 #include "engine/simulation.h"
-#include "io/chart_drawing.h"
-#include "io/scene.h"
+#include "io/common/chart_drawing.h"
+#include "io/scene/scene.h"
 #include "tools/benchmark.h"
 #include "tools/validation_cases.h"
 

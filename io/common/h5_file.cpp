@@ -1,0 +1,139 @@
+#include "io/common/h5_file.h"
+
+#include <cstdint>
+
+namespace talus::h5 {
+
+namespace {
+// Silence HDF5's own error stack printing; failures surface as exceptions with our message.
+struct QuietErrors {
+  QuietErrors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+};
+void quiet() { static QuietErrors q; }
+} // namespace
+
+Handle createFile(const std::string& path) {
+  quiet();
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot create HDF5 file " + path);
+  return Handle(f, H5Fclose);
+}
+
+Handle openFile(const std::string& path) {
+  quiet();
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw std::runtime_error("cannot open HDF5 file " + path);
+  return Handle(f, H5Fclose);
+}
+
+// No modification times in objects: identical runs then write identical files.
+Handle untimedObjects(hid_t cls) {
+  Handle p(H5Pcreate(cls), H5Pclose);
+  H5Pset_obj_track_times(p, false);
+  return p;
+}
+
+Handle createGroup(hid_t parent, const std::string& name) {
+  Handle gcpl = untimedObjects(H5P_GROUP_CREATE);
+  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose);
+}
+
+template <> hid_t nativeType<double>() { return H5T_NATIVE_DOUBLE; }
+template <> hid_t nativeType<float>() { return H5T_NATIVE_FLOAT; }
+template <> hid_t nativeType<int32_t>() { return H5T_NATIVE_INT32; }
+template <> hid_t nativeType<uint32_t>() { return H5T_NATIVE_UINT32; }
+template <> hid_t nativeType<uint64_t>() { return H5T_NATIVE_UINT64; }
+template <> hid_t nativeType<uint8_t>() { return H5T_NATIVE_UINT8; }
+
+template <class T>
+void writeDataset(hid_t parent, const std::string& name, const T* data, size_t rows, size_t cols) {
+  hsize_t dims[2] = {hsize_t(rows), hsize_t(cols)};
+  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose);
+  Handle dcpl = untimedObjects(H5P_DATASET_CREATE);
+  Handle set(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
+  if (rows && H5Dwrite(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw std::runtime_error("cannot write HDF5 dataset " + name);
+}
+
+template <class T>
+std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, size_t& cols) {
+  Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+  Handle space(H5Dget_space(set), H5Sclose);
+  hsize_t dims[2] = {0, 1};
+  const int nd = H5Sget_simple_extent_ndims(space);
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  rows = dims[0];
+  cols = nd == 2 ? dims[1] : 1;
+  std::vector<T> out(rows * cols);
+  if (!out.empty() && H5Dread(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw std::runtime_error("cannot read HDF5 dataset " + name);
+  return out;
+}
+
+#define TALUS_H5_INSTANTIATE(T)                                                                     \
+  template void writeDataset<T>(hid_t, const std::string&, const T*, size_t, size_t);             \
+  template std::vector<T> readDataset<T>(hid_t, const std::string&, size_t&, size_t&);
+TALUS_H5_INSTANTIATE(double)
+TALUS_H5_INSTANTIATE(float)
+TALUS_H5_INSTANTIATE(int32_t)
+TALUS_H5_INSTANTIATE(uint32_t)
+TALUS_H5_INSTANTIATE(uint64_t)
+TALUS_H5_INSTANTIATE(uint8_t)
+#undef TALUS_H5_INSTANTIATE
+
+bool exists(hid_t file, const std::string& path) { return H5Lexists(file, path.c_str(), H5P_DEFAULT) > 0; }
+
+void writeAttribute(hid_t obj, const std::string& name, double value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+}
+
+namespace {
+Handle stringType() {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  return type;
+}
+
+void writeStrings(hid_t obj, const std::string& name, const std::vector<std::string>& values, bool scalar) {
+  Handle type = stringType();
+  hsize_t n = values.size();
+  Handle space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle attr(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  if (H5Awrite(attr, type, ptrs.data()) < 0) throw std::runtime_error("cannot write HDF5 attribute " + name);
+}
+} // namespace
+
+void writeAttribute(hid_t obj, const std::string& name, const std::string& value) {
+  writeStrings(obj, name, {value}, true);
+}
+
+void writeAttribute(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  writeStrings(obj, name, values, false);
+}
+
+double readDoubleAttribute(hid_t obj, const std::string& name) {
+  Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  double v = 0;
+  H5Aread(attr, H5T_NATIVE_DOUBLE, &v);
+  return v;
+}
+
+std::vector<std::string> readStringsAttribute(hid_t obj, const std::string& name) {
+  Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
+  Handle space(H5Aget_space(attr), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  Handle type = stringType();
+  std::vector<char*> ptrs(size_t(n), nullptr);
+  if (H5Aread(attr, type, ptrs.data()) < 0) throw std::runtime_error("cannot read HDF5 attribute " + name);
+  std::vector<std::string> out;
+  for (char* p : ptrs) out.emplace_back(p ? p : "");
+  H5Dvlen_reclaim(type, space, H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+} // namespace talus::h5

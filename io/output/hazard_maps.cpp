@@ -1,0 +1,470 @@
+#include "io/output/hazard_maps.h"
+
+#include "io/common/geotiff_writer.h"
+#include "io/output/map_quicklook.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace talus {
+
+namespace {
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
+constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
+
+std::string fileSafe(const std::string& s) {
+  std::string out;
+  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.') ? c : '_';
+  return out;
+}
+} // namespace
+
+/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
+struct Splat {
+  int32_t col;
+  float tx, ty;
+  float q[kSums];
+};
+
+struct HazardMaps::Impl {
+  RasterGrid window; ///< the part of the grid the domain covers (same cells, shifted origin)
+  int c0 = 0, r0 = 0;
+  size_t cells = 0;
+  int layers = 1; ///< 0 = all material, 1 + i = material group i
+  std::vector<std::string> layerMaterial;
+  std::vector<std::vector<float>> maxima;  ///< [layer][q * cells + cell]
+  std::vector<std::vector<float>> sums;    ///< [layer][kSums * cell + k]
+  std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
+  std::vector<uint8_t> erodibleGroup;
+  std::vector<float> cosSlope; ///< NaN until known
+  std::vector<uint8_t> mark; ///< cell has sums this accumulation
+  std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
+  std::vector<std::vector<Splat>> splats;              ///< per group and particle
+  double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
+  double lastTime = -std::numeric_limits<double>::infinity();
+  double endTime = 0;
+  std::shared_ptr<const TerrainSdf> terrain;
+  Vec3d origin = Vec3d::Zero();
+  double zLo = 0, zHi = 0, dx = 1;
+
+  /// Calls f(cell, weight, particle) for the (up to four) cells particle p splats onto.
+  template <class F> void splat(const ParticleSet& P, F&& f) const {
+    const int w = window.nx, h = window.ny;
+    for (size_t p = 0; p < P.size(); ++p) {
+      const double fx = a * double(P.x[p][0]) + bx, fy = -a * double(P.x[p][1]) + by;
+      const double cf = std::floor(fx), rf = std::floor(fy);
+      if (cf < -1 || rf < -1 || cf >= w || rf >= h) continue;
+      const int c = int(cf), r = int(rf);
+      const double tx = fx - cf, ty = fy - rf;
+      const double wt[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
+      for (int k = 0; k < 4; ++k) {
+        const int cc = c + (k & 1), rr = r + (k >> 1);
+        if (cc >= 0 && rr >= 0 && cc < w && rr < h && wt[k] > 0) f(uint32_t(size_t(rr) * w + cc), wt[k], p);
+      }
+    }
+  }
+
+  /// Volume thickness (m) per cell of the groups selected by `use`, into layer 0 and per material.
+  void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out) const {
+    out.assign(size_t(layers), std::vector<float>(cells, 0.f));
+    const double invArea = 1.0 / (window.cellSize * window.cellSize);
+    const auto& groups = sim.groups();
+    for (size_t g = 0; g < groups.size(); ++g) {
+      if (!use[g]) continue;
+      const double vpm = invArea / groups[g]->density();
+      const int layer = layers > 1 ? int(1 + g) : -1;
+      const ParticleSet& P = groups[g]->particles;
+      splat(P, [&](uint32_t cell, double wt, size_t p) {
+        const float t = float(wt * double(P.mass[p]) * vpm);
+        out[0][cell] += t;
+        if (layer > 0) out[size_t(layer)][cell] += t;
+      });
+    }
+  }
+
+  /// cos(slope) of the terrain SDF under a cell: the ground is found by bisection on the
+  /// signed distance along the vertical, the normal by central differences there.
+  float terrainCos(uint32_t cell) const {
+    if (!terrain) return 1.f;
+    const int c = int(cell % uint32_t(window.nx)), r = int(cell / uint32_t(window.nx));
+    const double x = window.cellCentreX(c) - origin.x(), y = window.cellCentreY(r) - origin.y();
+    auto phi = [&](double px, double py, double pz) { return terrain->distance(Vec3d(px, py, pz)); };
+    double lo = zLo, hi = zHi;
+    if (!(phi(x, y, lo) < 0 && phi(x, y, hi) > 0)) return 1.f; // no ground crossing in this column
+    for (int i = 0; i < 48 && hi - lo > 1e-4 * dx; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (phi(x, y, mid) < 0 ? lo : hi) = mid;
+    }
+    const double z = 0.5 * (lo + hi), e = 0.5 * dx;
+    const Vec3d g((phi(x + e, y, z) - phi(x - e, y, z)) / (2 * e), (phi(x, y + e, z) - phi(x, y - e, z)) / (2 * e),
+                  (phi(x, y, z + e) - phi(x, y, z - e)) / (2 * e));
+    const double n = g.norm();
+    return n > 1e-9 ? float(std::abs(g.z()) / n) : 1.f;
+  }
+
+  float cosAt(uint32_t cell) {
+    float& c = cosSlope[cell];
+    if (std::isnan(c)) c = terrainCos(cell);
+    return c;
+  }
+};
+
+HazardMaps::HazardMaps(std::string outDir, RasterGrid grid, std::shared_ptr<const DemRaster> dem, MapSettings settings)
+    : impl_(std::make_unique<Impl>()), outDir_(std::move(outDir)), grid_(std::move(grid)), dem_(std::move(dem)),
+      settings_(std::move(settings)) {
+  if (dem_ && (dem_->grid.nx != grid_.nx || dem_->grid.ny != grid_.ny || dem_->height.size() != grid_.size()))
+    throw std::invalid_argument("HazardMaps: the DEM must lie on the map grid");
+}
+
+HazardMaps::~HazardMaps() = default;
+
+RasterGrid HazardMaps::domainGrid(const RunContext& run, double cellSize) {
+  RasterGrid g;
+  const Vec3d lo = run.domainMin + run.origin, hi = run.domainMax + run.origin;
+  g.cellSize = cellSize;
+  g.originX = lo.x();
+  g.originY = hi.y();
+  g.nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / cellSize - 1e-9)));
+  g.ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / cellSize - 1e-9)));
+  g.crsWkt = run.crsWkt;
+  return g;
+}
+
+const char* HazardMaps::stem(Quantity q) {
+  static const char* s[] = {"max_flow_height_vertical", "max_flow_height_slope_normal", "max_speed", "max_pressure",
+                            "deposit_thickness", "erosion_depth", "initial_thickness", "ground_elevation"};
+  return s[q];
+}
+const char* HazardMaps::band(Quantity q) {
+  static const char* s[] = {"max_flow_height_vertical_m", "max_flow_height_slope_normal_m", "max_speed_m_s",
+                            "max_dynamic_pressure_kPa", "final_deposit_thickness_vertical_m",
+                            "erosion_depth_vertical_m", "initial_thickness_vertical_m", "ground_elevation_m"};
+  return s[q];
+}
+const char* HazardMaps::unit(Quantity q) {
+  static const char* s[] = {"m", "m", "m/s", "kPa", "m", "m", "m", "m"};
+  return s[q];
+}
+
+void HazardMaps::save(StateArchive& a, const std::string& prefix) const {
+  const Impl& m = *impl_;
+  for (size_t l = 0; l < m.maxima.size(); ++l) a.putVector(prefix + "maxima" + std::to_string(l), m.maxima[l]);
+  for (size_t l = 0; l < m.initial.size(); ++l) a.putVector(prefix + "initial" + std::to_string(l), m.initial[l]);
+  a.putVector(prefix + "cos_slope", m.cosSlope);
+  a.putValue(prefix + "last_time", m.lastTime);
+  a.putValue(prefix + "accumulations", uint64_t(accumulations_));
+}
+
+void HazardMaps::load(const StateArchive& a, const std::string& prefix) {
+  Impl& m = *impl_;
+  for (size_t l = 0; l < m.maxima.size(); ++l) a.getVector(prefix + "maxima" + std::to_string(l), m.maxima[l]);
+  for (size_t l = 0; l < m.initial.size(); ++l) a.getVector(prefix + "initial" + std::to_string(l), m.initial[l]);
+  a.getVector(prefix + "cos_slope", m.cosSlope);
+  m.lastTime = a.getValue<double>(prefix + "last_time");
+  accumulations_ = size_t(a.getValue<uint64_t>(prefix + "accumulations"));
+}
+
+void HazardMaps::onStart(const Simulation& sim) {
+  Impl& m = *impl_;
+  const auto& st = sim.settings();
+  m.origin = st.origin;
+  m.dx = st.dx;
+  m.zLo = st.domain.min.z(), m.zHi = st.domain.max.z();
+  m.terrain = st.terrain;
+  // Window: the cells of the grid the domain's xy extent touches.
+  const double cs = grid_.cellSize;
+  const Vec3d lo = st.domain.min + st.origin, hi = st.domain.max + st.origin;
+  const int c0 = std::clamp(int(std::floor((lo.x() - grid_.originX) / cs)), 0, grid_.nx);
+  const int c1 = std::clamp(int(std::ceil((hi.x() - grid_.originX) / cs)), 0, grid_.nx);
+  const int r0 = std::clamp(int(std::floor((grid_.originY - hi.y()) / cs)), 0, grid_.ny);
+  const int r1 = std::clamp(int(std::ceil((grid_.originY - lo.y()) / cs)), 0, grid_.ny);
+  if (c1 <= c0 || r1 <= r0) throw std::runtime_error("hazard maps: the domain does not overlap the map grid");
+  m.c0 = c0, m.r0 = r0;
+  m.window = grid_;
+  m.window.nx = c1 - c0, m.window.ny = r1 - r0;
+  m.window.originX = grid_.originX + c0 * cs;
+  m.window.originY = grid_.originY - r0 * cs;
+  m.cells = m.window.size();
+  m.a = 1 / cs;
+  m.bx = (st.origin.x() - m.window.originX) / cs - 0.5;
+  m.by = (m.window.originY - st.origin.y()) / cs - 0.5;
+  m.endTime = sim.time();
+
+  const auto& groups = sim.groups();
+  m.layers = settings_.perMaterial ? int(1 + groups.size()) : 1;
+  m.layerMaterial.assign(1, "");
+  if (settings_.perMaterial)
+    for (const auto* g : groups) m.layerMaterial.push_back(g->name());
+  m.maxima.assign(size_t(m.layers), std::vector<float>(kMaxima * m.cells, 0.f));
+  m.sums.assign(size_t(m.layers), std::vector<float>(kSums * m.cells, 0.f));
+  m.mark.assign(m.cells, 0);
+  m.cosSlope.assign(m.cells, kNaN);
+
+  if (dem_) {
+    // Slope from the DEM itself: central differences, one-sided next to missing cells.
+    const auto& z = dem_->height;
+    for (int r = 0; r < m.window.ny; ++r)
+      for (int c = 0; c < m.window.nx; ++c) {
+        const int gc = c0 + c, gr = r0 + r;
+        auto at = [&](int cc, int rr) -> double {
+          if (cc < 0 || rr < 0 || cc >= grid_.nx || rr >= grid_.ny) return NAN;
+          return z[grid_.index(cc, rr)];
+        };
+        const double h = at(gc, gr);
+        double e = at(gc + 1, gr), w = at(gc - 1, gr), n = at(gc, gr - 1), s = at(gc, gr + 1);
+        double sx = 2 * cs, sy = 2 * cs;
+        if (!std::isfinite(e)) e = h, sx -= cs;
+        if (!std::isfinite(w)) w = h, sx -= cs;
+        if (!std::isfinite(n)) n = h, sy -= cs;
+        if (!std::isfinite(s)) s = h, sy -= cs;
+        const double zx = sx > 0 && std::isfinite(h) ? (e - w) / sx : 0;
+        const double zy = sy > 0 && std::isfinite(h) ? (n - s) / sy : 0;
+        m.cosSlope[size_t(r) * m.window.nx + c] = float(1 / std::sqrt(1 + zx * zx + zy * zy));
+      }
+  }
+
+  m.erodibleGroup.assign(groups.size(), 0);
+  for (size_t g = 0; g < groups.size(); ++g)
+    for (const auto& n : settings_.erodible)
+      if (groups[g]->name() == n) m.erodibleGroup[g] = 1;
+  if (!settings_.erodible.empty()) m.thickness(sim, m.erodibleGroup, m.initial);
+  m.thickness(sim, std::vector<uint8_t>(groups.size(), 1), m.start);
+  accumulate(sim);
+}
+
+void HazardMaps::onStep(const Simulation& sim, double) {
+  if (sim.time() - impl_->lastTime + 1e-12 < settings_.interval) return;
+  accumulate(sim);
+}
+
+void HazardMaps::accumulate(const Simulation& sim) {
+  // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
+  // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
+  // cells into the maxima: no two tasks write one cell, and every cell's sum has the same order
+  // whatever the thread count, so maps are bit-identical at any number of threads.
+  Impl& m = *impl_;
+  m.lastTime = sim.time();
+  m.endTime = sim.time();
+  ++accumulations_;
+  const auto& groups = sim.groups();
+  const int w = m.window.nx, h = m.window.ny;
+  const float a = float(m.a), bx = float(m.bx), by = float(m.by); // local metres are float anyway
+  m.rowStart.resize(groups.size());
+  m.order.resize(groups.size());
+  m.splats.resize(groups.size());
+  std::vector<int32_t> row;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const ParticleSet& P = groups[g]->particles;
+    const float invRho = float(1.0 / groups[g]->density());
+    auto& splat = m.splats[g];
+    row.resize(P.size());
+    splat.resize(P.size());
+    // Fixed chunks (not thread-dependent): each computes its particles' splats and counts them
+    // per row; a stable counting sort then lists particles by row, chunk by chunk, in the order
+    // a serial pass would.
+    constexpr size_t kChunk = 16384;
+    const size_t chunks = (P.size() + kChunk - 1) / kChunk, rows = size_t(h) + 1;
+    std::vector<uint32_t> count(chunks * rows, 0);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
+      uint32_t* cnt = count.data() + ch * rows;
+      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p) {
+        const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
+        if (!(fx >= -1 && fx < w && fy >= -1 && fy < h)) {
+          row[p] = -1;
+          continue;
+        }
+        // First of the two rows the splat covers, plus one (0 .. h); floor via int as fx, fy >= -1.
+        row[p] = int32_t(fy + 1);
+        ++cnt[size_t(row[p])];
+        Splat& sp = splat[p];
+        sp.col = int32_t(fx + 1) - 1;
+        sp.tx = fx - float(sp.col);
+        sp.ty = fy - float(row[p] - 1);
+        const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
+        sp.q[0] = mass * invRho, sp.q[1] = mass, sp.q[2] = mass * std::sqrt(v2), sp.q[3] = mass * v2;
+      }
+    });
+    auto& start = m.rowStart[g];
+    auto& order = m.order[g];
+    start.assign(rows + 1, 0);
+    uint32_t total = 0; // count[] becomes each (chunk, row)'s first slot in `order`
+    for (size_t r = 0; r < rows; ++r) {
+      start[r] = total;
+      for (size_t ch = 0; ch < chunks; ++ch) {
+        const uint32_t c = count[ch * rows + r];
+        count[ch * rows + r] = total;
+        total += c;
+      }
+    }
+    start[rows] = total;
+    order.resize(total);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
+      uint32_t* next = count.data() + ch * rows;
+      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p)
+        if (row[p] >= 0) order[next[size_t(row[p])]++] = uint32_t(p);
+    });
+  }
+
+  const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
+  const float minH = float(settings_.minHeight);
+  const size_t n = m.cells;
+  constexpr int kBand = 8;
+  const int bands = (h + kBand - 1) / kBand;
+  tbb::parallel_for(0, bands, [&](int band) {
+    const int r0 = band * kBand, r1 = std::min(h, r0 + kBand);
+    std::vector<uint32_t> touched;
+    uint8_t* mark = m.mark.data();
+    for (size_t g = 0; g < groups.size(); ++g) {
+      float* __restrict all = m.sums[0].data();
+      float* __restrict mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
+      const Splat* splats = m.splats[g].data();
+      const uint32_t* order = m.order[g].data();
+      const uint32_t* start = m.rowStart[g].data();
+      // Splats starting in row r0 - 1 reach row r0; those starting in row r1 - 1 end in r1.
+      for (int j = r0; j <= r1; ++j) {
+        const int r = j - 1;
+        const bool upper = r >= r0, lower = r + 1 < r1; // which of the splat's rows are ours
+        for (uint32_t k = start[j]; k < start[j + 1]; ++k) {
+          const Splat sp = splats[order[k]];
+          const float wx[2] = {1 - sp.tx, sp.tx}, wy[2] = {1 - sp.ty, sp.ty};
+          for (int dr = upper ? 0 : 1; dr < (lower ? 2 : 1); ++dr)
+            for (int dc = 0; dc < 2; ++dc) {
+              const int cc = sp.col + dc;
+              const float wt = wy[dr] * wx[dc];
+              if (cc < 0 || cc >= w || !(wt > 0)) continue;
+              const uint32_t cell = uint32_t(size_t(r + dr) * w + cc);
+              float* s = all + kSums * cell;
+              s[0] += wt * sp.q[0], s[1] += wt * sp.q[1], s[2] += wt * sp.q[2], s[3] += wt * sp.q[3];
+              if (mat) {
+                float* sm = mat + kSums * cell;
+                sm[0] += wt * sp.q[0], sm[1] += wt * sp.q[1], sm[2] += wt * sp.q[2], sm[3] += wt * sp.q[3];
+              }
+              if (!mark[cell]) mark[cell] = 1, touched.push_back(cell);
+            }
+        }
+      }
+    }
+    // Fold this band's columns into the maxima and clear only the cells touched.
+    for (uint32_t cell : touched) {
+      const float cosS = m.cosAt(cell);
+      for (int l = 0; l < m.layers; ++l) {
+        float* s = m.sums[size_t(l)].data() + kSums * cell;
+        if (s[0] > 0) {
+          float* mx = m.maxima[size_t(l)].data();
+          const float hv = s[0] * invArea;
+          mx[MaxHeightVertical * n + cell] = std::max(mx[MaxHeightVertical * n + cell], hv);
+          mx[MaxHeightNormal * n + cell] = std::max(mx[MaxHeightNormal * n + cell], hv * cosS);
+          if (hv >= minH) {
+            mx[MaxSpeed * n + cell] = std::max(mx[MaxSpeed * n + cell], s[2] / s[1]);
+            mx[MaxPressure * n + cell] = std::max(mx[MaxPressure * n + cell], 1e-3f * s[3] / s[0]);
+          }
+        }
+        std::fill(s, s + kSums, 0.f);
+      }
+      m.mark[cell] = 0;
+    }
+  });
+}
+
+void HazardMaps::onFinish(const Simulation& sim, bool completed) {
+  Impl& m = *impl_;
+  m.endTime = sim.time();
+  std::vector<std::vector<float>> finalErodible;
+  if (completed) {
+    m.thickness(sim, std::vector<uint8_t>(sim.groups().size(), 1), m.deposit);
+    if (!settings_.erodible.empty()) {
+      m.thickness(sim, m.erodibleGroup, finalErodible);
+      m.erosion.assign(size_t(m.layers), std::vector<float>(m.cells, 0.f));
+      for (int l = 0; l < m.layers; ++l)
+        for (size_t c = 0; c < m.cells; ++c)
+          m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
+    }
+  }
+
+  namespace fs = std::filesystem;
+  std::vector<float> windowHeights;
+  if (dem_) {
+    windowHeights.resize(m.cells);
+    for (int r = 0; r < m.window.ny; ++r)
+      for (int c = 0; c < m.window.nx; ++c)
+        windowHeights[size_t(r) * m.window.nx + c] = dem_->height[grid_.index(m.c0 + c, m.r0 + r)];
+  }
+  static const char* titles[] = {"Maximum flow height (vertical)", "Maximum flow height (slope-normal)",
+                                 "Maximum speed", "Maximum dynamic pressure", "Final deposit thickness (vertical)",
+                                 "Erosion depth (vertical)", "Initial thickness (vertical)", "Ground elevation"};
+  static const chart::Ramp ramps[] = {chart::Ramp::Viridis, chart::Ramp::Viridis, chart::Ramp::Plasma,
+                                      chart::Ramp::Magma, chart::Ramp::Browns, chart::Ramp::Blues,
+                                      chart::Ramp::Browns, chart::Ramp::Viridis};
+  char span[64];
+  std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
+  for (int l = 0; l < m.layers; ++l) {
+    const bool anyErodible = l == 0 ? !settings_.erodible.empty() : m.erodibleGroup[size_t(l - 1)] != 0;
+    const std::string dir = l == 0 ? "maps" : "maps/" + fileSafe(m.layerMaterial[size_t(l)]);
+    fs::create_directories(fs::path(outDir_) / dir);
+    for (int qi = 0; qi < kQuantities; ++qi) {
+      const auto q = Quantity(qi);
+      if ((q == Deposit || q == Erosion) && !completed) continue;
+      if (q == Erosion && !anyErodible) continue;
+      if (q == Ground && (l > 0 || !dem_)) continue;
+      const std::string rel = dir + "/" + stem(q);
+      GeoTiffBand b;
+      b.description = band(q);
+      b.unit = unit(q);
+      b.nodata = kNoData;
+      b.metadata = {{"TALUS_QUANTITY", band(q)},
+                    {"TALUS_MATERIAL", l == 0 ? std::string("all") : m.layerMaterial[size_t(l)]},
+                    {"TALUS_TIME_END_S", std::to_string(m.endTime)}};
+      writeGeoTiff((fs::path(outDir_) / (rel + ".tif")).string(), grid_, raster(q, l), b);
+      recordFile(rel + ".tif");
+      if (settings_.quicklook && q != Ground) {
+        std::vector<float> win(m.cells);
+        const std::vector<float> full = raster(q, l);
+        for (int r = 0; r < m.window.ny; ++r)
+          for (int c = 0; c < m.window.nx; ++c)
+            win[size_t(r) * m.window.nx + c] = full[grid_.index(m.c0 + c, m.r0 + r)];
+        QuicklookStyle style;
+        style.title = titles[qi];
+        style.subtitle = (l == 0 ? std::string("all materials") : "material '" + m.layerMaterial[size_t(l)] + "'") +
+                         ", " + span;
+        style.unit = unit(q);
+        style.ramp = ramps[qi];
+        writeMapQuicklook((fs::path(outDir_) / (rel + ".png")).string(), m.window, win, windowHeights, style, kNoData);
+        recordFile(rel + ".png");
+      }
+    }
+  }
+}
+
+std::vector<float> HazardMaps::raster(Quantity q, int layer) const {
+  const Impl& m = *impl_;
+  std::vector<float> out(grid_.size(), kNoData);
+  if (layer < 0 || layer >= m.layers) throw std::out_of_range("HazardMaps::raster: no such layer");
+  const float* src = nullptr;
+  if (q < kMaxima) src = m.maxima[size_t(layer)].data() + size_t(q) * m.cells;
+  else if (q == Deposit && !m.deposit.empty()) src = m.deposit[size_t(layer)].data();
+  else if (q == Erosion && !m.erosion.empty()) src = m.erosion[size_t(layer)].data();
+  else if (q == Initial && !m.start.empty()) src = m.start[size_t(layer)].data();
+  if (q == Ground) {
+    if (dem_)
+      for (size_t g = 0; g < out.size(); ++g)
+        if (std::isfinite(dem_->height[g])) out[g] = dem_->height[g];
+    return out;
+  }
+  for (int r = 0; r < m.window.ny; ++r)
+    for (int c = 0; c < m.window.nx; ++c) {
+      const size_t g = grid_.index(m.c0 + c, m.r0 + r);
+      if (dem_ && !std::isfinite(dem_->height[g])) continue; // no ground there: no data
+      out[g] = src ? src[size_t(r) * m.window.nx + c] : 0.f;
+    }
+  return out;
+}
+
+} // namespace talus

@@ -1,0 +1,77 @@
+// What a run writes: the [output] section of a scene (docs/outputs.md lists every key).
+//
+// Every output is off unless requested (HDF5 particle frames and the time series excepted, which
+// are cheap), so a scene without maps never accumulates them.
+#pragma once
+
+#include <Eigen/Dense>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+/// A vertical section through which discharge is measured: a polyline in world xy, extended
+/// vertically over [zMin, zMax] (world z).
+struct SectionSpec {
+  std::string name;
+  std::vector<Eigen::Vector2d> points;
+  double zMin = -std::numeric_limits<double>::infinity();
+  double zMax = std::numeric_limits<double>::infinity();
+};
+
+/// A path in world xy along which the flow front is tracked.
+struct PathSpec {
+  std::string name;
+  std::vector<Eigen::Vector2d> points;
+  double threshold = 0; ///< flow thickness (m) that counts as "reached"; 0 = one particle spacing
+  double halfWidth = 0; ///< corridor half-width (m) searched either side of the path
+  double minSpeed = 0;  ///< particles slower than this (m/s) are ignored: a resting cover is no front
+  std::vector<std::string> materials; ///< only these count; empty = all
+};
+
+/// A point advected with the flow ([[output.probes]]), whose speed is recorded.
+struct ProbeSpec {
+  std::string name;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< world (m); z unused unless hasZ
+  bool hasZ = false;    ///< [x, y] given: start at the mass-weighted mean height of that column
+  double radius = 0;    ///< m; 0 = two grid cells
+  std::vector<std::string> materials; ///< empty = all
+};
+
+struct MapSettings {
+  bool enabled = false;
+  double cellSize = 0;       ///< m, when the scene has no DEM; 0 = two grid cells
+  bool perMaterial = false;  ///< also one set of maps per material
+  bool quicklook = true;     ///< PNG next to every GeoTIFF
+  double minHeight = 0;      ///< speed and pressure count only where flow height >= this (m)
+  double interval = 0;       ///< s between accumulations; 0 = every step
+  std::vector<std::string> erodible; ///< materials whose lost thickness is erosion depth
+};
+
+struct OutputSettings {
+  std::string directory = "talus_out";
+  double frameInterval = 0; ///< seconds between frames; 0 writes only the final state
+  /// Seconds of simulated time between checkpoints (DIR/checkpoint.h5); 0 = none; negative =
+  /// the default, a tenth of the end time.
+  double checkpointInterval = -1;
+  /// CRS of the scene's world coordinates as WKT, from `crs` ("EPSG:2056", ...); used by maps and
+  /// VDB metadata when the scene has no DEM (a DEM brings its own).
+  std::string crsWkt;
+  // Formats written at every frame.
+  bool h5Frames = true;     ///< frames/particles_NNNNN.h5
+  bool vdb = true;          ///< frames/volume_NNNNN.vdb (density, fractions, velocity)
+  bool vdbPoints = false;   ///< frames/points_NNNNN.vdb (OpenVDB points, for Houdini)
+  bool ply = false;         ///< frames/particles_NNNNN.ply (Blender, ParaView)
+  // Time series.
+  bool series = true;       ///< series.csv
+  double seriesInterval = 0; ///< s between rows; 0 = end_time / 1000
+  bool plots = true;        ///< plots/*.png from the series
+  std::vector<std::string> waterMaterials; ///< explicit; otherwise models named "water"
+  std::vector<SectionSpec> sections;
+  std::vector<PathSpec> paths;
+  std::vector<ProbeSpec> probes;
+  MapSettings maps;
+};
+
+} // namespace talus

@@ -1,0 +1,215 @@
+#include "io/output/time_series.h"
+
+#include "io/common/atomic_file.h"
+#include "io/output/front_tracker.h"
+#include "io/output/probe_tracker.h"
+#include "io/output/section_discharge.h"
+#include "io/output/series_plots.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+namespace talus {
+
+std::string columnSafe(const std::string& s) {
+  std::string out;
+  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ? c : '_';
+  return out;
+}
+
+int SeriesTable::column(const std::string& name) const {
+  for (size_t i = 0; i < header.size(); ++i)
+    if (header[i] == name) return int(i);
+  return -1;
+}
+
+namespace {
+
+/// Energies, masses and the maximum speed. Potential energy is -m g.x relative to the initial
+/// state, so kinetic + potential shows what friction and plasticity dissipated.
+class StateColumns final : public SeriesColumns {
+public:
+  void onStart(const Simulation& sim) override {
+    names_.clear();
+    for (const auto* g : sim.groups()) names_.push_back(columnSafe(g->name()));
+    first_ = true;
+  }
+  std::vector<std::string> header() const override {
+    std::vector<std::string> h;
+    for (const auto& n : names_) h.push_back("kinetic_energy_J_" + n);
+    if (names_.size() > 1) h.push_back("kinetic_energy_J_total");
+    h.push_back("potential_energy_J");
+    for (const auto& n : names_) h.push_back("mass_kg_" + n);
+    h.push_back("mass_removed_kg");
+    h.push_back("max_speed_m_s");
+    return h;
+  }
+  void sample(const Simulation& sim, double, std::vector<double>& row) override {
+    // One parallel pass per material; deterministic splitting, so the sums do not depend on
+    // the thread count.
+    struct Sums {
+      double kinetic = 0, mass = 0, potential = 0;
+    };
+    const Vec3d g = sim.settings().gravity;
+    std::vector<Sums> sums;
+    for (const auto* grp : sim.groups()) {
+      const ParticleSet& P = grp->particles;
+      sums.push_back(tbb::parallel_deterministic_reduce(
+          tbb::blocked_range<size_t>(0, P.size(), 8192), Sums{},
+          [&](const tbb::blocked_range<size_t>& r, Sums acc) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+              const double m = double(P.mass[i]);
+              acc.kinetic += 0.5 * m * double(P.v[i].squaredNorm());
+              acc.mass += m;
+              acc.potential -= m * g.dot(P.x[i].cast<double>());
+            }
+            return acc;
+          },
+          [](Sums a, const Sums& b) {
+            a.kinetic += b.kinetic, a.mass += b.mass, a.potential += b.potential;
+            return a;
+          }));
+    }
+    double kinetic = 0, potential = 0;
+    for (const Sums& s : sums) row.push_back(s.kinetic), kinetic += s.kinetic, potential += s.potential;
+    if (names_.size() > 1) row.push_back(kinetic);
+    if (first_) potential0_ = potential, first_ = false;
+    row.push_back(potential - potential0_);
+    for (const Sums& s : sums) row.push_back(s.mass);
+    row.push_back(sim.totalMassRemoved());
+    row.push_back(sim.maxSpeed());
+  }
+
+private:
+  void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "potential0", potential0_); }
+  void load(const StateArchive& a, const std::string& prefix) override { potential0_ = a.getValue<double>(prefix + "potential0"); }
+
+  std::vector<std::string> names_;
+  double potential0_ = 0; ///< potential energy at the first row (-m g.x, local frame)
+  bool first_ = true;
+};
+
+/// Highest water particle (world z, m): the materials listed in water_materials, or else every
+/// material whose model is "water". No column when there is none.
+class WaterSurfaceColumns final : public SeriesColumns {
+public:
+  explicit WaterSurfaceColumns(std::vector<std::string> names) : names_(std::move(names)) {}
+  void onStart(const Simulation& sim) override {
+    water_.clear();
+    for (const auto* g : sim.groups()) {
+      bool listed = false;
+      for (const auto& n : names_) listed |= n == g->name();
+      if (names_.empty() ? std::string(g->modelName()) == "water" : listed) water_.push_back(g);
+    }
+  }
+  bool any() const { return !water_.empty(); }
+  std::vector<std::string> header() const override { return {"max_water_surface_m"}; }
+  void sample(const Simulation& sim, double, std::vector<double>& row) override {
+    double z = -std::numeric_limits<double>::infinity();
+    for (const auto* g : water_)
+      for (const Vec3& x : g->particles.x) z = std::max(z, double(x[2]));
+    row.push_back(std::isfinite(z) ? z + sim.settings().origin.z() : std::numeric_limits<double>::quiet_NaN());
+  }
+
+private:
+  std::vector<std::string> names_;
+  std::vector<const MaterialGroup*> water_;
+};
+
+} // namespace
+
+TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTime, double particleSpacing)
+    : outDir_(std::move(outDir)), plots_(s.plots), interval_(s.seriesInterval > 0 ? s.seriesInterval : endTime / 1000) {
+  columns_.push_back(std::make_unique<StateColumns>());
+  for (const auto& sec : s.sections) columns_.push_back(std::make_unique<SectionDischarge>(sec));
+  for (const auto& p : s.paths) columns_.push_back(std::make_unique<FrontTracker>(p, particleSpacing));
+  for (const auto& p : s.probes) columns_.push_back(std::make_unique<ProbeTracker>(p));
+  columns_.push_back(std::make_unique<WaterSurfaceColumns>(s.waterMaterials));
+}
+
+TimeSeries::~TimeSeries() = default;
+
+void TimeSeries::onStart(const Simulation& sim) {
+  for (auto& c : columns_) c->onStart(sim);
+  // The water column only exists when the scene has water.
+  if (auto* w = dynamic_cast<WaterSurfaceColumns*>(columns_.back().get()); w && !w->any()) columns_.pop_back();
+  table_.header = {"time_s", "dt_s"};
+  for (const auto& c : columns_)
+    for (const auto& h : c->header()) table_.header.push_back(h);
+  lastSample_ = sim.time();
+  sample(sim);
+}
+
+void TimeSeries::save(StateArchive& a, const std::string& prefix) const {
+  std::vector<double> flat;
+  for (const auto& r : table_.rows) flat.insert(flat.end(), r.begin(), r.end());
+  a.putVector(prefix + "rows", flat);
+  a.putValue(prefix + "row_width", uint64_t(table_.header.size()));
+  const double clock[3] = {lastSample_, nextSample_, lastDt_};
+  a.put(prefix + "clock", clock, sizeof clock);
+  for (size_t i = 0; i < columns_.size(); ++i) columns_[i]->save(a, prefix + "columns" + std::to_string(i) + "/");
+}
+
+void TimeSeries::load(const StateArchive& a, const std::string& prefix) {
+  std::vector<double> flat;
+  a.getVector(prefix + "rows", flat);
+  const size_t width = size_t(a.getValue<uint64_t>(prefix + "row_width"));
+  if (width != table_.header.size()) throw std::runtime_error("checkpoint series has different columns than the scene");
+  table_.rows.clear();
+  for (size_t i = 0; i + width <= flat.size(); i += width)
+    table_.rows.emplace_back(flat.begin() + long(i), flat.begin() + long(i + width));
+  double clock[3];
+  a.get(prefix + "clock", clock, sizeof clock);
+  lastSample_ = clock[0], nextSample_ = clock[1], lastDt_ = clock[2];
+  for (size_t i = 0; i < columns_.size(); ++i) columns_[i]->load(a, prefix + "columns" + std::to_string(i) + "/");
+}
+
+void TimeSeries::onStep(const Simulation& sim, double dt) {
+  lastDt_ = dt;
+  for (auto& c : columns_) c->onStep(sim, dt);
+  if (sim.time() >= nextSample_ - 1e-9 * interval_) sample(sim);
+}
+
+void TimeSeries::sample(const Simulation& sim) {
+  const double elapsed = sim.time() - lastSample_;
+  std::vector<double> row{sim.time(), lastDt_};
+  for (auto& c : columns_) c->sample(sim, elapsed, row);
+  table_.rows.push_back(std::move(row));
+  lastSample_ = sim.time();
+  nextSample_ = (std::floor(sim.time() / interval_ + 1e-9) + 1) * interval_;
+}
+
+void TimeSeries::writeCsv() {
+  const std::string path = (std::filesystem::path(outDir_) / "series.csv").string();
+  writeAtomically(path, [&](const std::string& tmp) {
+    std::ofstream f(tmp);
+    for (size_t i = 0; i < table_.header.size(); ++i) f << (i ? "," : "") << table_.header[i];
+    f << '\n';
+    char buf[32];
+    for (const auto& row : table_.rows) {
+      for (size_t i = 0; i < row.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%.10g", row[i]);
+        f << (i ? "," : "") << buf;
+      }
+      f << '\n';
+    }
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+  });
+  recordFile("series.csv");
+}
+
+void TimeSeries::onFrame(const Simulation&, int) { writeCsv(); }
+
+void TimeSeries::onFinish(const Simulation& sim, bool completed) {
+  if (completed && (table_.rows.empty() || table_.rows.back()[0] < sim.time())) sample(sim);
+  writeCsv();
+  if (plots_)
+    for (const auto& f : writeSeriesPlots(outDir_, table_)) recordFile(f);
+}
+
+} // namespace talus

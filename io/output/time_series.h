@@ -1,0 +1,51 @@
+// series.csv: one row every series_interval seconds (and at the end) with time, step size,
+// kinetic energy and mass per material, potential energy, mass removed, maximum speed, then the
+// discharge of every section, the front of every path and the highest water surface; PNG plots
+// of them in plots/ at the end. Rewritten at every frame, so a long run can be watched.
+#pragma once
+
+#include "io/output/output_settings.h"
+#include "io/output/output_observer.h"
+#include "io/output/series_columns.h"
+
+#include <memory>
+
+namespace talus {
+
+struct SeriesTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  /// Index of a column, or -1.
+  int column(const std::string& name) const;
+};
+
+class TimeSeries final : public OutputObserver {
+public:
+  /// `particleSpacing` (m) is the default front threshold of paths.
+  TimeSeries(std::string outDir, const OutputSettings& settings, double endTime, double particleSpacing);
+  ~TimeSeries() override;
+
+  std::string name() const override { return "time_series"; }
+  void onStart(const Simulation& sim) override;
+  void onStep(const Simulation& sim, double dt) override;
+  void onFrame(const Simulation& sim, int index) override;
+  void onFinish(const Simulation& sim, bool completed) override;
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
+
+  const SeriesTable& table() const { return table_; }
+  double interval() const { return interval_; }
+
+private:
+  void sample(const Simulation& sim);
+  void writeCsv();
+
+  std::string outDir_;
+  bool plots_;
+  double interval_;
+  std::vector<std::unique_ptr<SeriesColumns>> columns_;
+  SeriesTable table_;
+  double lastSample_ = 0, nextSample_ = 0, lastDt_ = 0;
+};
+
+} // namespace talus

@@ -1,0 +1,99 @@
+#include "io/run/run_summary.h"
+
+#include "io/common/atomic_file.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace talus {
+
+std::string jsonString(const std::string& s) {
+  std::ostringstream o;
+  o << '"';
+  for (char c : s) {
+    switch (c) {
+    case '"': o << "\\\""; break;
+    case '\\': o << "\\\\"; break;
+    case '\n': o << "\\n"; break;
+    case '\t': o << "\\t"; break;
+    default:
+      if (static_cast<unsigned char>(c) < 0x20) o << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+      else o << c;
+    }
+  }
+  o << '"';
+  return o.str();
+}
+
+namespace {
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream o;
+  o << std::setprecision(10) << v;
+  return o.str();
+}
+std::string vec(const Vec3d& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; }
+} // namespace
+
+void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info) {
+  std::ostringstream j;
+  const double pss = info.wallSeconds > 0 ? double(sim.particleSteps()) / info.wallSeconds : 0;
+  j << "{\n";
+  j << "  \"scene\": " << jsonString(info.scene) << ",\n";
+  j << "  \"status\": " << jsonString(info.status) << ",\n";
+  j << "  \"steps\": " << sim.steps() << ",\n";
+  j << "  \"simulated_time\": " << num(sim.time()) << ",\n";
+  j << "  \"wall_seconds\": " << num(info.wallSeconds) << ",\n";
+  j << "  \"threads\": " << info.threads << ",\n";
+  j << "  \"particles\": " << sim.particleCount() << ",\n";
+  j << "  \"particle_steps\": " << sim.particleSteps() << ",\n";
+  j << "  \"particle_steps_per_second\": " << num(pss) << ",\n";
+  j << "  \"particle_steps_per_second_per_thread\": " << num(pss / std::max(1, info.threads)) << ",\n";
+  j << "  \"mass_initial\": " << num(sim.initialMass()) << ",\n";
+  j << "  \"mass_final\": " << num(sim.totalMass()) << ",\n";
+  j << "  \"mass_removed\": " << num(sim.totalMassRemoved()) << ",\n";
+  j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
+  j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";
+  const PhaseTimes& t = sim.phaseTimes();
+  j << "  \"phase_seconds\": {\"bin\": " << num(t.bin) << ", \"terrain\": " << num(t.terrain) << ", \"p2g\": "
+    << num(t.p2g) << ", \"grid\": " << num(t.grid) << ", \"g2p\": " << num(t.g2p) << ", \"cull\": " << num(t.cull)
+    << "},\n";
+  j << "  \"materials\": [";
+  bool first = true;
+  for (const MaterialGroup* g : sim.groups()) {
+    Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double mass = 0;
+    for (size_t i = 0; i < g->size(); ++i) {
+      const Vec3d x = g->particles.x[i].cast<double>() + sim.settings().origin;
+      lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      mass += double(g->particles.mass[i]);
+    }
+    j << (first ? "\n" : ",\n") << "    {\"name\": " << jsonString(g->name()) << ", \"model\": "
+      << jsonString(g->modelName()) << ", \"particles\": " << g->size() << ", \"mass\": " << num(mass)
+      << ", \"mass_removed\": " << num(sim.massRemoved()[size_t(g->index())]) << ", \"bbox_min\": "
+      << (g->size() ? vec(lo) : "null") << ", \"bbox_max\": " << (g->size() ? vec(hi) : "null") << "}";
+    first = false;
+  }
+  j << "\n  ],\n";
+  // What each requested output cost and wrote, so a user sees what maps or frames cost.
+  j << "  \"outputs\": [";
+  first = true;
+  for (const OutputReport& o : info.outputs) {
+    j << (first ? "\n" : ",\n") << "    {\"name\": " << jsonString(o.name) << ", \"seconds\": " << num(o.seconds)
+      << ", \"files\": [";
+    for (size_t i = 0; i < o.files.size(); ++i) j << (i ? ", " : "") << jsonString(o.files[i]);
+    j << "]}";
+    first = false;
+  }
+  j << "\n  ]\n}\n";
+  writeAtomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << j.str();
+    if (!out) throw std::runtime_error("cannot write " + path);
+  });
+}
+
+} // namespace talus

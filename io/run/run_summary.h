@@ -1,0 +1,26 @@
+// DIR/summary.json: what a run did, for humans and scripts.
+#pragma once
+
+#include "engine/simulation.h"
+#include "io/output/output_set.h"
+
+#include <string>
+#include <vector>
+
+namespace talus {
+
+struct RunInfo {
+  std::string scene;
+  double wallSeconds = 0;
+  int threads = 1;
+  std::vector<std::string> materialNames;
+  std::string status = "completed"; ///< or "failed: ..." when a guard stopped the run
+  std::vector<OutputReport> outputs;
+};
+
+void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);
+
+/// JSON string literal with escapes.
+std::string jsonString(const std::string& s);
+
+} // namespace talus

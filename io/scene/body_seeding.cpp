@@ -1,0 +1,110 @@
+#include "io/scene/body_seeding.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace talus {
+
+namespace {
+
+std::string range(double a, double b) {
+  char s[64];
+  std::snprintf(s, sizeof s, "[%.10g, %.10g]", a, b);
+  return s;
+}
+
+/// Velocity gradient of a rigid rotation: v = omega x r  =>  grad v = [omega]x.
+Mat3d skew(const Vec3d& w) {
+  Mat3d m;
+  m << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return m;
+}
+
+} // namespace
+
+BodyReport seedShapeBody(const ConfigTable& t, const Shape& shape, const SeedSpec& spec, const Vec3d& domainMin,
+                         const Vec3d& domainMax, MaterialGroup& group) {
+  BodyReport rep;
+  rep.material = group.name();
+  rep.kind = t.string("shape");
+  Vec3d lo, hi;
+  shape.bounds(lo, hi);
+  const double tol = 1e-9 * (1 + domainMax.cwiseAbs().maxCoeff());
+  if ((lo.array() < domainMin.array() - tol).any() || (hi.array() > domainMax.array() + tol).any())
+    t.fail("shape", "body extends outside the domain");
+  const Vec3d v0 = t.vec3("velocity", Vec3d::Zero());
+  const Vec3d omega = t.vec3("angular_velocity", Vec3d::Zero());
+  const Vec3d c = shape.centre();
+  rep.particles = seedRegion(
+      lo, hi, [&](const Vec3d& x) { return shape.contains(x); },
+      [&](const Vec3d& x) { return Vec3d(v0 + omega.cross(x - c)); }, spec, group, skew(omega));
+  if (rep.particles == 0) t.fail("shape", "body holds no particle (smaller than a cell, or inside the terrain)");
+  rep.seededVolume = double(rep.particles) * std::pow(spec.dx, 3) / spec.particlesPerCell;
+  rep.geometricVolume = shape.volume();
+  return rep;
+}
+
+BodyReport seedTerrainBody(const TerrainBody& body, const HeightField& bed, const SeedSpec& spec, const Vec3d& origin,
+                           const Vec3d& domainMin, const Vec3d& domainMax, MaterialGroup* group,
+                           const std::vector<const TerrainBody*>& earlier) {
+  const ConfigTable& t = body.table();
+  BodyReport rep;
+  rep.kind = body.kindName();
+  rep.material = group ? group->name() : "";
+  if (body.solid()) {
+    rep.geometricVolume = body.solid()->volume();
+    return rep;
+  }
+  Vec3d lo, hi;
+  const double q = 0.5 * std::min(spec.dx, body.grid().cellSize);
+  rep.geometricVolume = body.measure(bed, q, lo, hi);
+  const std::string key = body.regionKey();
+  if (!(rep.geometricVolume > 0)) {
+    const char* why = body.kind() == TerrainBody::Kind::Water ? "the terrain is nowhere below 'level' in the region"
+                      : body.kind() == TerrainBody::Kind::Layer ? "no part of the region passes the slope and elevation limits"
+                                             : "zero thickness everywhere";
+    t.fail(key, std::string("the body is empty: ") + why);
+  }
+  const double tol = 1e-9 * (1 + domainMax.cwiseAbs().maxCoeff());
+  if ((lo.array() < domainMin.array() - tol).any() || (hi.array() > domainMax.array() + tol).any())
+    t.fail(key, "body extends outside the domain (body x " + range(lo.x(), hi.x()) + ", y " + range(lo.y(), hi.y()) +
+                    ", z " + range(lo.z(), hi.z()) + ")");
+  if (body.kind() == TerrainBody::Kind::Fixed) return rep;
+
+  const Vec3d v0 = body.velocity();
+  const double gridMargin = spec.dx;
+  auto columnRange = [&](double x0, double y0, double x1, double y1, double& zlo, double& zhi) {
+    zlo = INFINITY, zhi = -INFINITY;
+    double gmax = 0;
+    bool any = false;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        const double x = origin.x() + x0 + 0.5 * a * (x1 - x0), y = origin.y() + y0 + 0.5 * b * (y1 - y0);
+        double gx, gy;
+        const double zb = bed.heightAndGradient(x, y, gx, gy);
+        gmax = std::max(gmax, std::hypot(gx, gy));
+        const double top = body.columnTopBound(bed, x, y, zb);
+        any |= top > zb;
+        zlo = std::min(zlo, zb), zhi = std::max(zhi, top);
+      }
+    const double m = gridMargin * (1 + gmax);
+    zlo -= origin.z() + m, zhi += m - origin.z();
+    return any;
+  };
+  auto inside = [&](const Vec3d& x) {
+    const Vec3d w = origin + x;
+    if (!body.contains(bed, w.x(), w.y(), w.z())) return false;
+    for (const TerrainBody* e : earlier)
+      if (e->kind() != TerrainBody::Kind::Fixed && e->contains(bed, w.x(), w.y(), w.z())) return false;
+    return true;
+  };
+  // The quadrature bounds z only to within a sample spacing: pad (columnRange bounds the cells).
+  const Vec3d pad(0, 0, 10 * spec.dx);
+  rep.particles = seedColumns(lo - origin - pad, hi - origin + pad, columnRange, inside, [&](const Vec3d&) { return v0; }, spec,
+                              *group);
+  rep.seededVolume = double(rep.particles) * std::pow(spec.dx, 3) / spec.particlesPerCell;
+  if (rep.particles == 0) t.fail(key, "body holds no particle (thinner than the particle spacing, or inside the terrain)");
+  return rep;
+}
+
+} // namespace talus

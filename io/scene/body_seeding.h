@@ -1,0 +1,38 @@
+// Filling [[bodies]] with particles: solids (box, sphere, cylinder) and bodies on the terrain
+// (releases, layers, water), with a report of what each seeded.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/shapes.h"
+#include "io/config/config_table.h"
+#include "io/scene/particle_seeding.h"
+#include "io/terrain/terrain_bodies.h"
+
+#include <string>
+#include <vector>
+
+namespace talus {
+
+struct BodyReport {
+  std::string label;    ///< "bodies[i]" or the body's name
+  std::string material;
+  std::string kind;
+  size_t particles = 0;
+  double seededVolume = 0;    ///< particles * dx^3 / ppc
+  double geometricVolume = 0; ///< of the shape (before terrain clipping)
+};
+
+/// Seeds a solid body (its table `t` gives velocity and angular_velocity) into `group`, inside the
+/// domain [domainMin, domainMax] (local). Throws InputError naming the table's keys.
+BodyReport seedShapeBody(const ConfigTable& t, const Shape& shape, const SeedSpec& spec, const Vec3d& domainMin,
+                         const Vec3d& domainMax, MaterialGroup& group);
+
+/// Seeds a terrain body (or, for fixed regions, only measures it). `bed` is the ground the bodies
+/// lie on; spec.terrain the final terrain (samples inside it are skipped), and so are samples
+/// inside the `earlier` terrain bodies: where they overlap, the first body wins. Domain bounds
+/// are world coordinates here.
+BodyReport seedTerrainBody(const TerrainBody& body, const HeightField& bed, const SeedSpec& spec, const Vec3d& origin,
+                           const Vec3d& domainMin, const Vec3d& domainMax, MaterialGroup* group,
+                           const std::vector<const TerrainBody*>& earlier);
+
+} // namespace talus

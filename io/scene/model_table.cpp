@@ -1,0 +1,137 @@
+#include "io/scene/model_table.h"
+
+#include "materials/cam_clay.h"
+#include "materials/drucker_prager.h"
+#include "materials/elastic.h"
+#include "materials/fluid_group.h"
+#include "io/scene/material_presets.h"
+#include "materials/solid_group.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace talus {
+
+const std::vector<std::string>& materialModelNames() {
+  static const std::vector<std::string> names{"elastic", "drucker_prager", "cam_clay", "water"};
+  return names;
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Reads a material's keys: the table's value when given, else the preset's, else a default
+/// (or an error when there is none). Every value is range-checked with the key's line.
+class MaterialReader {
+public:
+  MaterialReader(const ConfigTable& t, const MaterialPreset* preset) : t_(t), preset_(preset) {}
+
+  double get(const std::string& key, std::optional<double> fallback, double lo, double hi, bool openLo,
+             bool openHi) const {
+    if (t_.has(key)) return t_.inRange(key, 0, lo, hi, openLo, openHi);
+    if (preset_) {
+      auto it = preset_->values.find(key);
+      if (it != preset_->values.end()) return it->second;
+    }
+    if (!fallback) t_.missing(key);
+    return *fallback;
+  }
+  double positive(const std::string& key, std::optional<double> fallback = std::nullopt) const {
+    if (t_.has(key)) return t_.positive(key);
+    return get(key, fallback, 0, kInf, true, true);
+  }
+  double nonNegative(const std::string& key, std::optional<double> fallback) const {
+    if (t_.has(key)) return t_.positive(key, 0, true);
+    return get(key, fallback, 0, kInf, false, true);
+  }
+  /// Angle in degrees, strictly inside (0, 90); returned in radians.
+  double angle(const std::string& key, std::optional<double> fallback = std::nullopt) const {
+    return get(key, fallback, 0, 90, true, true) * M_PI / 180.0;
+  }
+  const ConfigTable& table() const { return t_; }
+
+private:
+  const ConfigTable& t_;
+  const MaterialPreset* preset_;
+};
+
+HenckyElasticity readElasticity(const MaterialReader& r) {
+  const double scale = r.positive("elastic_scale", 1.0);
+  const double E = r.positive("youngs_modulus") * scale;
+  const double nu = r.get("poisson_ratio", 0.3, -1.0, 0.5, true, true);
+  return HenckyElasticity::fromYoung(E, nu);
+}
+
+} // namespace
+
+std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int index) {
+  const std::string name = t.string("name");
+  const MaterialPreset* preset = nullptr;
+  if (t.has("preset")) {
+    std::vector<std::string> names;
+    for (const auto& [n, p] : materialPresets()) names.push_back(n);
+    preset = &materialPresets().at(t.choice("preset", "", names));
+  }
+  std::string model;
+  if (t.has("model")) {
+    model = t.choice("model", "", materialModelNames());
+    if (preset && preset->model != model)
+      t.fail("model", "preset '" + t.string("preset") + "' is a '" + preset->model + "' material, not '" + model + "'");
+  } else if (preset) {
+    model = preset->model;
+  } else {
+    t.fail("", "missing required key 'model' (or a 'preset')");
+  }
+  const MaterialReader r(t, preset);
+  const double density = r.positive("density");
+
+  if (model == "elastic") {
+    ElasticModel m;
+    m.elastic = readElasticity(r);
+    return std::make_unique<SolidGroup<ElasticModel>>(name, index, density, m);
+  }
+  if (model == "drucker_prager") {
+    const HenckyElasticity e = readElasticity(r);
+    DruckerPragerParams p;
+    p.frictionAngle = r.angle("friction_angle");
+    p.residualFrictionAngle = r.angle("residual_friction_angle", p.frictionAngle * 180 / M_PI);
+    p.cohesion = r.nonNegative("cohesion", 0.0);
+    p.softening = r.nonNegative("softening", 0.0);
+    const std::string cone = t.choice("cone", "compression", {"compression", "plane_strain", "extension"});
+    p.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
+             : cone == "extension"  ? DruckerPragerCone::Extension
+                                    : DruckerPragerCone::Compression;
+    return std::make_unique<SolidGroup<DruckerPragerModel>>(name, index, density, DruckerPragerModel(e, p));
+  }
+  if (model == "cam_clay") {
+    CamClayModel m;
+    m.elastic = readElasticity(r);
+    m.params.M = r.positive("critical_state_slope");
+    m.params.Ms = r.positive("critical_state_slope_flowing", m.params.M);
+    m.params.p0 = r.positive("preconsolidation_pressure");
+    m.params.beta = r.nonNegative("tension_ratio", 0.0);
+    m.params.xi = r.positive("hardening");
+    auto g = std::make_unique<SolidGroup<CamClayModel>>(name, index, density, m);
+    g->initialState.volumetricPlasticStrain = float(m.initialVolumetricStrain());
+    return g;
+  }
+  // water
+  TaitWaterModel m;
+  m.exponent = r.get("tait_exponent", 7.0, 1.0, 20.0, false, false);
+  if (t.has("sound_speed")) {
+    if (t.has("bulk_modulus")) t.fail("sound_speed", "give either bulk_modulus or sound_speed, not both");
+    const double c = t.positive("sound_speed");
+    m.bulk = density * c * c / m.exponent; // c^2 = k B / rho0
+  } else {
+    m.bulk = r.positive("bulk_modulus");
+  }
+  m.viscosity = r.nonNegative("viscosity", 0.0);
+  m.maxTension = r.get("max_tension", 0.0, 0, m.bulk, false, true);
+  auto g = std::make_unique<FluidGroup>(name, index, density, m);
+  g->hydrostatic = t.boolean("hydrostatic", true);
+  return g;
+}
+
+} // namespace talus

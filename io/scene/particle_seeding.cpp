@@ -1,0 +1,134 @@
+#include "io/scene/particle_seeding.h"
+
+#include "io/common/resource_limits.h"
+
+#include <string>
+
+#include <cmath>
+#include <tbb/parallel_for.h>
+
+namespace talus {
+
+namespace {
+uint64_t splitmix(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+double unit(uint64_t& state) { // uniform in [0, 1)
+  state = splitmix(state);
+  return double(state >> 11) * (1.0 / 9007199254740992.0);
+}
+int cubeRoot(int n) {
+  const int r = int(std::lround(std::cbrt(double(n))));
+  return r * r * r == n ? r : 0;
+}
+} // namespace
+
+Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
+  uint64_t h = splitmix(spec.seed ^ splitmix(uint64_t(i) * 73856093ull ^ splitmix(uint64_t(j) * 19349663ull ^
+                                                                           splitmix(uint64_t(k) * 83492791ull))));
+  h = splitmix(h + uint64_t(s));
+  const int n = cubeRoot(spec.particlesPerCell);
+  if (n > 0) {
+    const int a = s / (n * n), b = (s / n) % n, c = s % n;
+    Vec3d p((a + 0.5) / n, (b + 0.5) / n, (c + 0.5) / n);
+    if (spec.jitter > 0)
+      for (int d = 0; d < 3; ++d) p[d] += (unit(h) - 0.5) * spec.jitter / n;
+    return p;
+  }
+  // Stratify along x so samples never cluster in one half of the cell.
+  const double ppc = spec.particlesPerCell;
+  return {(s + unit(h)) / ppc, unit(h), unit(h)};
+}
+
+size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
+                  const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
+                  MaterialGroup& group, const Mat3d& velocityGradient) {
+  const Mat3 C0 = velocityGradient.cast<Real>();
+  const double dx = spec.dx;
+  const double volume = dx * dx * dx / spec.particlesPerCell;
+  const Real mass = Real(group.density() * volume);
+  int64_t c0[3], c1[3];
+  for (int d = 0; d < 3; ++d) {
+    c0[d] = int64_t(std::floor(lo[d] / dx));
+    c1[d] = int64_t(std::ceil(hi[d] / dx));
+  }
+  ParticleSet& P = group.particles;
+  const size_t before = P.size();
+  const double candidates = double(c1[0] - c0[0]) * double(c1[1] - c0[1]) * double(c1[2] - c0[2]) * spec.particlesPerCell;
+  if (candidates > spec.maxParticles)
+    throw ResourceLimitError("would test " + std::to_string(candidates) + " particle positions, more than max_particles = " +
+                             std::to_string(spec.maxParticles) + " (is dx too small?)");
+  for (int64_t i = c0[0]; i < c1[0]; ++i)
+    for (int64_t j = c0[1]; j < c1[1]; ++j)
+      for (int64_t k = c0[2]; k < c1[2]; ++k)
+        for (int s = 0; s < spec.particlesPerCell; ++s) {
+          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
+          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
+          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          P.x.push_back(x.cast<Real>());
+          P.v.push_back(velocity(x).cast<Real>());
+          P.C.push_back(C0);
+          P.tau.push_back(Sym3{});
+          P.mass.push_back(mass);
+        }
+  group.resizeState(P.size());
+  return P.size() - before;
+}
+
+size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRange,
+                   const std::function<bool(const Vec3d&)>& inside,
+                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec, MaterialGroup& group,
+                   const Mat3d& velocityGradient) {
+  const Mat3 C0 = velocityGradient.cast<Real>();
+  const double dx = spec.dx;
+  const Real mass = Real(group.density() * dx * dx * dx / spec.particlesPerCell);
+  int64_t c0[2], c1[2];
+  for (int d = 0; d < 2; ++d) {
+    c0[d] = int64_t(std::floor(lo[d] / dx));
+    c1[d] = int64_t(std::ceil(hi[d] / dx));
+  }
+  const size_t rows = size_t(std::max<int64_t>(0, c1[0] - c0[0]));
+  const double columns = double(rows) * double(std::max<int64_t>(0, c1[1] - c0[1]));
+  if (columns * spec.particlesPerCell > spec.maxParticles)
+    throw ResourceLimitError("would seed at least " + std::to_string(columns * spec.particlesPerCell) +
+                             " particles, more than max_particles = " + std::to_string(spec.maxParticles) +
+                             " (is dx too small?)");
+  // Per x-row of columns: positions and velocities, concatenated in row order afterwards.
+  std::vector<std::vector<Vec3>> xs(rows), vs(rows);
+  tbb::parallel_for(size_t(0), rows, [&](size_t r) {
+    const int64_t i = c0[0] + int64_t(r);
+    for (int64_t j = c0[1]; j < c1[1]; ++j) {
+      double zlo, zhi;
+      if (!columnRange(double(i) * dx, double(j) * dx, double(i + 1) * dx, double(j + 1) * dx, zlo, zhi)) continue;
+      const int64_t k0 = int64_t(std::floor(std::max(zlo, lo.z()) / dx));
+      const int64_t k1 = int64_t(std::ceil(std::min(zhi, hi.z()) / dx));
+      for (int64_t k = k0; k < k1; ++k)
+        for (int s = 0; s < spec.particlesPerCell; ++s) {
+          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
+          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
+          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          xs[r].push_back(x.cast<Real>());
+          vs[r].push_back(velocity(x).cast<Real>());
+        }
+    }
+  });
+  ParticleSet& P = group.particles;
+  const size_t before = P.size();
+  size_t total = before;
+  for (const auto& x : xs) total += x.size();
+  P.x.reserve(total), P.v.reserve(total), P.C.reserve(total), P.tau.reserve(total), P.mass.reserve(total);
+  for (size_t r = 0; r < rows; ++r) {
+    P.x.insert(P.x.end(), xs[r].begin(), xs[r].end());
+    P.v.insert(P.v.end(), vs[r].begin(), vs[r].end());
+  }
+  P.C.resize(total, C0);
+  P.tau.resize(total, Sym3{});
+  P.mass.resize(total, mass);
+  group.resizeState(P.size());
+  return P.size() - before;
+}
+
+} // namespace talus

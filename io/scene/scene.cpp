@@ -1,0 +1,294 @@
+#include "io/scene/scene.h"
+
+#include "engine/union_terrain.h"
+#include "io/terrain/shape_reader.h"
+#include "io/scene/body_seeding.h"
+#include "io/common/resource_limits.h"
+#include "io/terrain/terrain_bodies.h"
+#include "io/terrain/terrain_loader.h"
+#include "io/config/toml_reader.h"
+#include "io/scene/model_table.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+
+namespace talus {
+
+namespace {
+
+BoundaryCondition readBoundary(const ConfigTable& t, const std::string& typeKey, const std::string& frictionKey,
+                               const std::string& fallback, bool allowOpen) {
+  std::vector<std::string> kinds{"sticky", "slip", "friction"};
+  if (allowOpen) kinds.push_back("open");
+  const std::string s = t.choice(typeKey, fallback, kinds);
+  BoundaryCondition bc;
+  bc.type = s == "sticky" ? BoundaryType::Sticky : s == "slip" ? BoundaryType::Slip
+            : s == "friction" ? BoundaryType::Friction : BoundaryType::Open;
+  if (bc.type == BoundaryType::Friction) {
+    if (!t.has(frictionKey)) t.fail(typeKey, "'friction' needs the Coulomb coefficient '" + frictionKey + "'");
+    bc.friction = Real(t.inRange(frictionKey, 0, 0, 10));
+  } else if (t.has(frictionKey)) {
+    t.inRange(frictionKey, 0, 0, 10); // validated but unused by this boundary type
+  }
+  return bc;
+}
+
+void readSimulation(const ConfigTable& root, SceneSetup& s) {
+  const ConfigTable* sim = root.table("simulation");
+  if (!sim) root.fail("", "missing [simulation] section");
+  s.settings.dx = sim->positive("dx");
+  s.particlesPerCell = int(sim->integer("particles_per_cell", 8, 1, 64));
+  s.endTime = sim->positive("end_time");
+  s.settings.cfl = sim->inRange("cfl", 0.4, 0, 1, true, false);
+  s.settings.gravity = sim->vec3("gravity", Vec3d(0, 0, -9.81));
+  s.settings.maxDt = sim->positive("max_dt", std::numeric_limits<double>::infinity());
+  s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
+  s.settings.damping = sim->positive("damping", 0, true);
+  s.maxParticles = std::min(sim->positive("max_particles", 2e9), resourceLimits().maxParticles);
+}
+
+/// `[domain]` may be omitted (or give only walls/origin) for a DEM terrain: the box then spans
+/// the DEM's extent and its elevations, 8 cells below the lowest point and
+/// max(100 m, 20 cells) above the highest.
+void readDomain(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* dem) {
+  const ConfigTable* dom = root.table("domain");
+  if (!dom && !dem) root.fail("", "missing [domain] section");
+  Vec3d lo, hi;
+  const bool box = dom && (dom->has("min") || dom->has("max"));
+  if (!dem || box) {
+    lo = dom->vec3("min"), hi = dom->vec3("max");
+    for (int d = 0; d < 3; ++d)
+      if (!(hi[d] > lo[d])) dom->fail("max", "must exceed domain.min on every axis");
+  }
+  if (dem) {
+    const HeightField f(*dem->smoothed);
+    float hmin, hmax;
+    f.range(hmin, hmax);
+    const double dx = s.settings.dx;
+    if (!box) {
+      lo = Vec3d(f.xmin(), f.ymin(), hmin - 8 * dx);
+      hi = Vec3d(f.xmax(), f.ymax(), hmax + std::max(100.0, 20 * dx));
+    } else {
+      const double tol = 1e-6 * f.grid().cellSize;
+      if (lo.x() < f.xmin() - tol || hi.x() > f.xmax() + tol || lo.y() < f.ymin() - tol || hi.y() > f.ymax() + tol) {
+        char buf[320];
+        std::snprintf(buf, sizeof buf, "the domain (x [%.10g, %.10g], y [%.10g, %.10g]) extends beyond the DEM "
+                      "(x [%.10g, %.10g], y [%.10g, %.10g])", lo.x(), hi.x(), lo.y(), hi.y(), f.xmin(), f.xmax(),
+                      f.ymin(), f.ymax());
+        dom->fail("min", buf);
+      }
+    }
+  }
+  // Local frame: national grid coordinates (~1e6 m) would lose metres in single precision.
+  s.settings.origin = dom ? dom->vec3("origin", lo) : lo;
+  s.settings.domain.min = lo - s.settings.origin;
+  s.settings.domain.max = hi - s.settings.origin;
+  if (dom) s.settings.domain.walls = readBoundary(*dom, "walls", "wall_friction", "slip", true);
+}
+
+void readTerrain(const ConfigTable& root, SceneSetup& s) {
+  const ConfigTable* ter = root.table("terrain");
+  if (!ter) return;
+  s.settings.terrain = loadTerrain(*ter, s.settings);
+  s.settings.terrainBoundary = readBoundary(*ter, "boundary", "friction", "friction", false);
+}
+
+/// A DEM terrain: the ground edits of the terrain bodies (releases from a post-event DEM are
+/// carved out, fixed layers added), then the level set at the simulation's dx with its voxels on
+/// the grid nodes (cached), united with fixed solids. `bed` is the ground the bodies lie on.
+void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const std::vector<const TerrainBody*>& bodies,
+                     SceneSetup& s, std::shared_ptr<DemRaster>& bed) {
+  bed = std::make_shared<DemRaster>(*dem.smoothed);
+  for (const TerrainBody* b : bodies)
+    if (!b->carveDepth().empty())
+      for (size_t i = 0; i < bed->height.size(); ++i) bed->height[i] -= b->carveDepth()[i];
+  auto ground = std::make_shared<DemRaster>(*bed);
+  {
+    const HeightField bedField(*bed);
+    for (const TerrainBody* b : bodies) b->raise(bedField, *ground);
+  }
+  LevelSetBuildOptions o;
+  o.dx = s.settings.dx;
+  o.origin = s.settings.origin;
+  o.band = int(ter.integer("band", 3, 1, 64));
+  const double margin = 2 * kBlockDim * o.dx; // active blocks reach past the walls
+  const Vec3d lo = s.settings.domain.min + s.settings.origin, hi = s.settings.domain.max + s.settings.origin;
+  o.xmin = lo.x() - margin, o.ymin = lo.y() - margin, o.xmax = hi.x() + margin, o.ymax = hi.y() + margin;
+  o.zmin = lo.z() - margin;
+  o.sourcePath = dem.raw->sourcePath;
+  o.smoothRadius = dem.smoothRadius;
+  CachedLevelSet ls;
+  try {
+    ls = cachedDemLevelSet(*ground, o);
+  } catch (const std::exception& e) {
+    ter.fail(ter.has("dem") ? "dem" : "synthetic", std::string("cannot build the terrain level set: ") + e.what());
+  }
+  char buf[1024];
+  if (ls.reused)
+    std::snprintf(buf, sizeof buf, "terrain: %s; level set (dx %g m) reused from %s (read in %.2f s)",
+                  dem.description.c_str(), o.dx, ls.path.c_str(), ls.loadSeconds);
+  else
+    std::snprintf(buf, sizeof buf, "terrain: %s; level set (dx %g m, %zu active voxels) built in %.2f s, cached in %s",
+                  dem.description.c_str(), o.dx, ls.stats.activeVoxels, ls.stats.buildSeconds + ls.stats.writeSeconds,
+                  ls.path.c_str());
+  s.notes.push_back(buf);
+  if (dem.filledCells > 0)
+    s.notes.push_back("terrain: filled " + std::to_string(dem.filledCells) + " no-data cells of " + dem.raw->sourcePath);
+  std::vector<std::shared_ptr<const TerrainSdf>> parts{ls.sdf};
+  for (const TerrainBody* b : bodies)
+    if (auto solid = b->fixedSolid()) parts.push_back(solid);
+  s.settings.terrain = parts.size() == 1 ? parts[0] : std::make_shared<UnionTerrain>(parts);
+  s.settings.terrainBoundary = readBoundary(ter, "boundary", "friction", "friction", false);
+  s.dem = ground;
+}
+
+void readMaterials(const ConfigTable& root, SceneSetup& s) {
+  const auto tables = root.tables("materials");
+  if (tables.empty()) root.fail("", "no [[materials]] given");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    auto g = createMaterialGroup(*tables[i], int(i));
+    for (const auto& n : s.materialNames)
+      if (n == g->name()) tables[i]->fail("name", "duplicate material name '" + n + "'");
+    s.materialNames.push_back(g->name());
+    s.groups.push_back(std::move(g));
+  }
+}
+
+MaterialGroup* findGroup(const ConfigTable& t, SceneSetup& s, std::string& name) {
+  name = t.string("material");
+  for (auto& g : s.groups)
+    if (g->name() == name) return g.get();
+  std::string list;
+  for (const auto& n : s.materialNames) list += (list.empty() ? "" : ", ") + n;
+  t.fail("material", "no material named '" + name + "' (materials: " + list + ")");
+}
+
+/// Reads [[bodies]]: solids (`shape`) and terrain bodies (`kind`), builds the terrain they need,
+/// then seeds them in order.
+void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* dem, uint64_t seed, double jitter,
+                bool jitterGiven) {
+  const auto tables = root.tables("bodies");
+  if (tables.empty()) root.fail("", "no [[bodies]] given: the scene has nothing to simulate");
+  const Vec3d worldMin = s.settings.domain.min + s.settings.origin, worldMax = s.settings.domain.max + s.settings.origin;
+  std::vector<std::unique_ptr<TerrainBody>> terrainBodies(tables.size());
+  std::vector<const TerrainBody*> list;
+  for (size_t i = 0; i < tables.size(); ++i) {
+    const ConfigTable& t = *tables[i];
+    const bool hasShape = t.has("shape"), hasKind = t.has("kind");
+    if (hasShape && hasKind) t.fail("kind", "give either 'shape' (a solid body) or 'kind' (a terrain body), not both");
+    if (!hasShape && !hasKind)
+      t.fail("", "give 'shape' (box, sphere, cylinder) or 'kind' (release, layer, water, fixed)");
+    if (!hasKind) continue;
+    const std::string kind = t.choice("kind", "", {"release", "layer", "water", "fixed"});
+    if (!dem) t.fail("kind", "terrain bodies need a DEM: [terrain] dem = \"file\" or synthetic = { ... }");
+    terrainBodies[i] = std::make_unique<TerrainBody>(t, kind, *dem, s.settings.origin, worldMin, worldMax);
+    list.push_back(terrainBodies[i].get());
+  }
+  std::shared_ptr<DemRaster> bed;
+  try {
+    if (dem) buildDemTerrain(*root.table("terrain"), *dem, list, s, bed);
+    else readTerrain(root, s);
+  } catch (const ResourceLimitError& e) {
+    root.table("terrain")->fail("", e.what());
+  }
+
+  SeedSpec spec;
+  spec.maxParticles = s.maxParticles;
+  spec.dx = s.settings.dx;
+  spec.particlesPerCell = s.particlesPerCell;
+  spec.seed = seed;
+  spec.jitter = jitter;
+  spec.terrain = s.settings.terrain.get();
+  SeedSpec terrainSpec = spec;
+  // A lattice cut by a sloping surface leaves terraces of particles; jitter breaks them up.
+  if (!jitterGiven) terrainSpec.jitter = 0.5;
+  std::unique_ptr<HeightField> bedField;
+  if (bed) bedField = std::make_unique<HeightField>(*bed);
+  const DomainBox& dom = s.settings.domain;
+  std::vector<const TerrainBody*> seeded;
+  for (size_t i = 0; i < tables.size(); ++i) {
+    const ConfigTable& t = *tables[i];
+    const std::string label = t.string("name", "bodies[" + std::to_string(i) + "]");
+    if (const TerrainBody* tb = terrainBodies[i].get()) {
+      std::string material;
+      MaterialGroup* group = tb->kind() == TerrainBody::Kind::Fixed ? nullptr : findGroup(t, s, material);
+      BodyReport rep;
+      try {
+        rep = seedTerrainBody(*tb, *bedField, terrainSpec, s.settings.origin, worldMin, worldMax, group, seeded);
+      } catch (const ResourceLimitError& e) {
+        t.fail("", e.what());
+      }
+      seeded.push_back(tb);
+      rep.label = label;
+      s.bodies.push_back(rep);
+      continue;
+    }
+    std::string material;
+    MaterialGroup* group = findGroup(t, s, material);
+    auto shape = readBodyShape(t, s.settings.origin);
+    BodyReport rep;
+    try {
+      rep = seedShapeBody(t, *shape, spec, dom.min, dom.max, *group);
+    } catch (const ResourceLimitError& e) {
+      t.fail("", e.what());
+    }
+    rep.label = label;
+    s.bodies.push_back(rep);
+  }
+}
+
+void readOutput(const ConfigTable& root, SceneSetup& s) {
+  s.output = readOutputSettings(root.table("output"), s.materialNames);
+}
+
+} // namespace
+
+SceneSetup buildScene(const ConfigTable& root) {
+  SceneSetup s;
+  s.file = root.file();
+  readSimulation(root, s);
+  const ConfigTable* ter = root.table("terrain");
+  std::optional<DemTerrainInput> dem;
+  if (ter && isDemTerrain(*ter)) dem = readDemTerrain(*ter);
+  readDomain(root, s, dem ? &*dem : nullptr);
+  readMaterials(root, s);
+  const ConfigTable* sim = root.table("simulation");
+  const uint64_t seed = uint64_t(sim->integer("seed", 0, 0, INT64_MAX));
+  const bool jitterGiven = sim->has("jitter");
+  const double jitter = sim->inRange("jitter", 0, 0, 1);
+  readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
+  readOutput(root, s);
+  root.checkAllUsed();
+  return s;
+}
+
+RunContext SceneSetup::runContext() const {
+  RunContext r;
+  r.dx = settings.dx;
+  r.endTime = endTime;
+  r.particleSpacing = settings.dx / std::cbrt(double(particlesPerCell));
+  r.origin = settings.origin;
+  r.domainMin = settings.domain.min;
+  r.domainMax = settings.domain.max;
+  r.dem = dem;
+  r.crsWkt = dem ? dem->grid.crsWkt : output.crsWkt;
+  r.materialNames = materialNames;
+  return r;
+}
+
+SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
+  auto root = readTomlFile(path);
+  for (const auto& o : overrides) applyOverride(*root, o);
+  return buildScene(*root);
+}
+
+SceneSetup loadSceneString(const std::string& text, const std::string& name,
+                           const std::vector<std::string>& overrides) {
+  auto root = readTomlString(text, name);
+  for (const auto& o : overrides) applyOverride(*root, o);
+  return buildScene(*root);
+}
+
+} // namespace talus

@@ -1,0 +1,50 @@
+// A scene file turned into everything a run needs: settings, seeded material groups, outputs.
+#pragma once
+
+#include "io/config/config_table.h"
+#include "engine/simulation.h"
+#include "io/output/run_context.h"
+#include "io/scene/body_seeding.h"
+#include "io/scene/output_reader.h"
+#include "io/common/raster_grid.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+struct SceneSetup {
+  std::string file;
+  SimulationSettings settings;
+  std::vector<std::unique_ptr<MaterialGroup>> groups;
+  std::vector<std::string> materialNames;
+  double endTime = 1;
+  int particlesPerCell = 8;
+  double maxParticles = 2e9; ///< [simulation] max_particles, capped by resourceLimits()
+  OutputSettings output;
+  std::vector<BodyReport> bodies;
+  /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS):
+  /// the ground as simulated, i.e. after smoothing, with releases from a post-event DEM carved
+  /// out and fixed layers added.
+  std::shared_ptr<const DemRaster> dem;
+  /// What the reader did that a user may want to know (terrain built or reused, cells filled).
+  std::vector<std::string> notes;
+
+  /// What the outputs need to know of this scene.
+  RunContext runContext() const;
+};
+
+/// Reads every section, creates and seeds the material groups, and rejects unknown keys.
+/// Throws InputError naming file, line and key.
+SceneSetup buildScene(const ConfigTable& root);
+
+/// Convenience: parse a file (or text) with `--set` overrides and build it.
+SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides = {});
+SceneSetup loadSceneString(const std::string& text, const std::string& name,
+                           const std::vector<std::string>& overrides = {});
+
+/// The scene `talus run` uses when no file is given (data/scenes/default.toml, compiled in).
+const std::string& defaultSceneText();
+
+} // namespace talus
