@@ -27,7 +27,6 @@ public:
 
   size_t size() const { return coords_.size(); }
   const BlockCoord& coord(uint32_t b) const { return coords_[b]; }
-  const std::vector<BlockCoord>& coords() const { return coords_; }
   /// Index of block b + (dx, dy, dz) for the 8 offsets in {0,1}^3 (bit 2 = x, 1 = y, 0 = z), or -1.
   const std::array<int32_t, 8>& upper(uint32_t b) const { return upper_[b]; }
 

@@ -1,57 +1,87 @@
 #include "engine/grid_update.h"
 
-#include "engine/terrain.h"
-
-#include <cmath>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace talus {
 
-void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm) {
-  const double dx = grid.dx;
-  // Node index thresholds of the walls: node i is on or beyond the low face when i <= lo.
-  int lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = int(std::floor(prm.domain.min[d] / dx + 1e-6));
-    hi[d] = int(std::ceil(prm.domain.max[d] / dx - 1e-6));
+namespace {
+
+/// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
+/// from the material, N s) and its moment about `ref`.
+void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
+                   const Vec3d& ref, Vec4* nodes, ContactBatch& batch, double* acc) {
+  col.gather(b, c, dx, nodes, batch);
+  if (batch.count == 0 && batch.held == 0) return;
+  const bool moving = col.moves();
+  for (int i = 0; i < batch.count; ++i) {
+    const Vec4& nd = nodes[batch.node[i]];
+    ContactNode& cn = batch.contact[i];
+    cn.mass = nd[0];
+    cn.v = moving ? Vec3(nd.tail<3>() - batch.velocity[i]) : Vec3(nd.tail<3>());
   }
-  const bool walls = prm.domain.walls.type != BoundaryType::Open;
+  col.law().apply(batch.contact, batch.count, step);
+  Vec3d force = Vec3d::Zero(), moment = Vec3d::Zero();
+  auto settle = [&](int n, const Vec3& vNew) {
+    Vec4& nd = nodes[n];
+    const Vec3d impulse = double(nd[0]) * (nd.tail<3>() - vNew).cast<double>();
+    const Vec3d x = Vec3d(c.x * kBlockDim + (n >> (2 * kBlockLog2)), c.y * kBlockDim + ((n >> kBlockLog2) & 7),
+                          c.z * kBlockDim + (n & 7)) * dx;
+    force += impulse;
+    moment += (x - ref).cross(impulse);
+    nd.tail<3>() = vNew;
+  };
+  for (int i = 0; i < batch.count; ++i)
+    settle(batch.node[i], moving ? Vec3(batch.contact[i].v + batch.velocity[i]) : batch.contact[i].v);
+  for (int h = 0; h < batch.held; ++h) {
+    const int slot = kBlockNodes - 1 - h;
+    settle(batch.node[slot], moving ? batch.velocity[slot] : Vec3(Vec3::Zero()));
+  }
+  for (int d = 0; d < 3; ++d) acc[d] += force[d], acc[3 + d] += moment[d];
+}
+
+} // namespace
+
+void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const std::vector<Collider*>& colliders,
+                          double time, std::vector<ColliderLoad>& loads) {
   const Vec3 dtg = prm.dt * prm.gravity;
   const Real keep = Real(1) / (Real(1) + prm.damping * prm.dt);
+  const size_t K = colliders.size(), nBlocks = grid.blockCount();
+  const double dx = grid.dx;
+  const ContactStep step{prm.dt};
+  std::vector<Vec3d> refs(K);
+  for (size_t k = 0; k < K; ++k) refs[k] = colliders[k]->reference(time);
+  // Per block and collider: impulse and its moment (6 doubles), summed in block order below.
+  std::vector<double>& perBlock = grid.contactImpulse;
+  perBlock.assign(nBlocks * K * 6, 0.0);
+  tbb::enumerable_thread_specific<std::unique_ptr<ContactBatch>> batches([] { return std::make_unique<ContactBatch>(); });
 
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.blockCount(), 16), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nBlocks, 16), [&](const auto& r) {
+    ContactBatch& batch = *batches.local();
     for (size_t b = r.begin(); b != r.end(); ++b) {
       Vec4* nodes = grid.block(uint32_t(b));
-      const BlockCoord& c = grid.topology.coord(uint32_t(b));
-      const int o[3] = {c.x * kBlockDim, c.y * kBlockDim, c.z * kBlockDim};
-      bool nearWall = false;
-      for (int d = 0; d < 3; ++d) nearWall |= o[d] <= lo[d] || o[d] + kBlockDim - 1 >= hi[d];
-      nearWall &= walls;
-      const TerrainBlock* ground = prm.hasTerrain ? grid.terrain[b] : nullptr;
-
       for (int n = 0; n < kBlockNodes; ++n) {
         Vec4& node = nodes[n];
         if (node[0] <= Real(0)) {
           node.tail<3>().setZero();
           continue;
         }
-        Vec3 v = (node.tail<3>() / node[0] + dtg) * keep;
-        if (ground && ground->phi[n] <= 0.f) {
-          const Vec3 nrm(Real(ground->normal[n][0]), Real(ground->normal[n][1]), Real(ground->normal[n][2]));
-          // Deep inside a narrow band the SDF is flat and has no normal: hold the node still.
-          v = nrm.squaredNorm() > Real(0.25) ? boundaryVelocity(v, nrm, prm.terrain) : Vec3::Zero();
-        }
-        if (nearWall) {
-          const int idx[3] = {o[0] + (n >> 6), o[1] + ((n >> 3) & 7), o[2] + (n & 7)};
-          for (int d = 0; d < 3; ++d) {
-            if (idx[d] <= lo[d]) v = boundaryVelocity(v, Vec3::Unit(d), prm.domain.walls);
-            if (idx[d] >= hi[d]) v = boundaryVelocity(v, -Vec3::Unit(d), prm.domain.walls);
-          }
-        }
-        node.tail<3>() = v;
+        node.tail<3>() = (node.tail<3>() / node[0] + dtg) * keep;
       }
+      const BlockCoord& c = grid.topology.coord(uint32_t(b));
+      for (size_t k = 0; k < K; ++k)
+        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], nodes, batch, &perBlock[(b * K + k) * 6]);
     }
   });
+
+  loads.assign(K, ColliderLoad{});
+  const double invDt = 1.0 / double(prm.dt);
+  for (size_t b = 0; b < nBlocks; ++b)
+    for (size_t k = 0; k < K; ++k) {
+      const double* a = &perBlock[(b * K + k) * 6];
+      loads[k].force += Vec3d(a[0], a[1], a[2]) * invDt;
+      loads[k].moment += Vec3d(a[3], a[4], a[5]) * invDt;
+    }
 }
 
 } // namespace talus

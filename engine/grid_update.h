@@ -1,8 +1,11 @@
-// Grid update: momentum to velocity, gravity, then boundary conditions on every active node.
+// Grid update: momentum to velocity, gravity and damping on every active node, then each
+// collider's contact law on the nodes inside it, with the load each collider takes.
 #pragma once
 
-#include "engine/boundary.h"
+#include "engine/collider.h"
 #include "engine/sparse_grid.h"
+
+#include <vector>
 
 namespace talus {
 
@@ -10,12 +13,12 @@ struct GridUpdateParams {
   Real dt = 0;
   Vec3 gravity = Vec3::Zero();
   Real damping = 0; ///< velocity damping rate (1/s), see SimulationSettings::damping
-  DomainBox domain;                  ///< local frame
-  bool hasTerrain = false;
-  BoundaryCondition terrain;
 };
 
-/// After this, node records hold (mass, velocity).
-void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& params);
+/// After this, node records hold (mass, velocity). Colliders act in list order on each node.
+/// loads[k] receives collider k's load of this step; the per-block sums are added in block order,
+/// so loads are bit-identical at any thread count.
+void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& params, const std::vector<Collider*>& colliders,
+                          double time, std::vector<ColliderLoad>& loads);
 
 } // namespace talus

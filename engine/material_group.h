@@ -32,11 +32,9 @@ struct G2PBlock {
 struct G2PStats {
   Real maxSpeed = 0;
   size_t nonFinite = 0; ///< particles whose velocity or stress became NaN/inf
-  float minFluidJ = 1;  ///< most compressed fluid particle (its sound speed limits dt)
   void merge(const G2PStats& o) {
     if (o.maxSpeed > maxSpeed) maxSpeed = o.maxSpeed;
     nonFinite += o.nonFinite;
-    minFluidJ = std::min(minFluidJ, o.minFluidJ);
   }
 };
 
@@ -60,8 +58,8 @@ public:
   virtual double waveSpeed() const = 0;
   /// Any other limit on dt (s) this material imposes at grid spacing dx (e.g. viscosity).
   virtual double stableDtLimit(double dx) const { return std::numeric_limits<double>::infinity(); }
-  /// Called once per step with the merged G2P statistics of all groups.
-  virtual void afterStep(const G2PStats&) {}
+  /// Called once per step after G2P (e.g. a fluid updates the compression its sound speed uses).
+  virtual void afterStep() {}
   /// Called once before the first step: e.g. fluids start in hydrostatic equilibrium.
   virtual void initialize(const Vec3d& gravity, double dx) {}
   /// Gather velocities for particles [begin, end), update deformation, stress and position.

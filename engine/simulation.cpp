@@ -28,7 +28,7 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
     : settings_(std::move(settings)), groups_(std::move(groups)) {
   grid_.dx = Real(settings_.dx);
   for (auto& g : groups_) groupPtrs_.push_back(g.get());
-  if (settings_.terrain) terrainCache_ = std::make_unique<TerrainCache>(settings_.terrain, settings_.dx);
+  buildColliders();
   int maxIndex = 0;
   for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
   massRemoved_.assign(size_t(maxIndex), 0.0);
@@ -36,6 +36,31 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
   initialMass_ = totalMass();
   for (auto* g : groupPtrs_)
     for (const Vec3& v : g->particles.v) maxSpeed_ = std::max(maxSpeed_, double(v.norm()));
+}
+
+void Simulation::buildColliders() {
+  // Order of action on a node: the terrain, structures at rest, the faces (as the walls always
+  // acted last), then moving structures, whose prescribed motion must win where they overlap.
+  auto structures = [&](bool moving) {
+    for (const StructureSpec& s : settings_.structures)
+      if (s.motion.moves() == moving)
+        colliders_.push_back(std::make_unique<Collider>(s.name, s.geometry, s.law, s.motion, s.momentPoint));
+  };
+  if (settings_.terrain)
+    colliders_.push_back(std::make_unique<Collider>("terrain", settings_.terrain, settings_.terrainLaw, ColliderMotion{},
+                                                    Vec3d::Zero()));
+  structures(false);
+  for (int f = 0; f < 6; ++f)
+    if (settings_.faces[size_t(f)]) {
+      const int axis = f / 2;
+      const bool upper = f % 2;
+      colliders_.push_back(std::make_unique<Collider>(Collider::face(
+          faceNames()[size_t(f)], axis, upper, upper ? settings_.domain.max[axis] : settings_.domain.min[axis],
+          settings_.faces[size_t(f)])));
+    }
+  structures(true);
+  for (auto& c : colliders_) colliderPtrs_.push_back(c.get());
+  loads_.assign(colliders_.size(), ColliderLoad{});
 }
 
 double Simulation::maxWaveSpeed() const {
@@ -65,9 +90,9 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.bin);
     binParticles(groupPtrs_, grid_);
   }
-  if (terrainCache_) {
-    ScopedTimer t(times_.terrain);
-    terrainCache_->attach(grid_.topology, grid_.terrain);
+  {
+    ScopedTimer t(times_.colliders);
+    for (auto& c : colliders_) c->prepare(grid_.topology, settings_.dx, time_ + dt);
   }
   {
     ScopedTimer t(times_.p2g);
@@ -82,10 +107,7 @@ double Simulation::step(double dtCap) {
     const double ramp = 0.5 * (1 - std::cos(M_PI * s));
     prm.gravity = (ramp * settings_.gravity).cast<Real>();
     prm.damping = Real(settings_.damping);
-    prm.domain = settings_.domain;
-    prm.hasTerrain = terrainCache_ != nullptr;
-    prm.terrain = settings_.terrainBoundary;
-    updateGridVelocities(grid_, prm);
+    updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, loads_);
   }
   G2PStats stats;
   {
@@ -96,7 +118,7 @@ double Simulation::step(double dtCap) {
   time_ += dt;
   ++steps_;
   maxSpeed_ = stats.maxSpeed;
-  for (auto* g : groupPtrs_) g->afterStep(stats);
+  for (auto* g : groupPtrs_) g->afterStep();
   checkFinite(stats.nonFinite);
   {
     ScopedTimer t(times_.cull);
@@ -136,9 +158,11 @@ void Simulation::checkFinite(size_t nonFinite) const {
 
 void Simulation::cullEscaped() {
   const double half = 0.5 * settings_.dx;
-  const bool open = settings_.domain.walls.type == BoundaryType::Open;
-  const Vec3 lo = (settings_.domain.min - Vec3d::Constant(open ? 0.0 : half)).cast<Real>();
-  const Vec3 hi = (settings_.domain.max + Vec3d::Constant(open ? 0.0 : half)).cast<Real>();
+  Vec3 lo, hi;
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = Real(settings_.domain.min[d] - (settings_.faces[2 * d] ? half : 0.0));
+    hi[d] = Real(settings_.domain.max[d] + (settings_.faces[2 * d + 1] ? half : 0.0));
+  }
   for (auto* g : groupPtrs_) {
     auto& P = g->particles;
     const size_t n = P.size();
@@ -235,7 +259,9 @@ size_t Simulation::particleBytes() const {
 }
 
 size_t Simulation::gridBytes() const {
-  return grid_.memoryBytes() + (terrainCache_ ? terrainCache_->memoryBytes() : 0);
+  size_t b = grid_.memoryBytes();
+  for (const auto& c : colliders_) b += c->memoryBytes();
+  return b;
 }
 
 } // namespace talus

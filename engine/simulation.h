@@ -1,12 +1,14 @@
 // The explicit MPM time loop: bin -> P2G -> grid update -> G2P (+ constitutive update) -> cull.
 #pragma once
 
-#include "engine/boundary.h"
+#include "engine/collider.h"
+#include "engine/contact_laws.h"
 #include "engine/material_group.h"
 #include "engine/sparse_grid.h"
 #include "engine/state_archive.h"
-#include "engine/terrain.h"
+#include "engine/sdf.h"
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -14,6 +16,21 @@
 #include <vector>
 
 namespace talus {
+
+/// A structure in the flow: a dam, a wall, a gallery roof, a gate (see engine/collider.h).
+struct StructureSpec {
+  std::string name;
+  std::shared_ptr<const Sdf> geometry;   ///< rest pose, local frame
+  std::shared_ptr<const ContactLaw> law;
+  ColliderMotion motion;
+  Vec3d momentPoint = Vec3d::Zero();     ///< moments are about this point (local frame, rest pose)
+};
+
+/// Names of the six domain faces, in the order of SimulationSettings::faces.
+inline const std::array<const char*, 6>& faceNames() {
+  static const std::array<const char*, 6> n{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  return n;
+}
 
 struct SimulationSettings {
   double dx = 0.1;
@@ -29,14 +46,20 @@ struct SimulationSettings {
   double damping = 0;
   Vec3d origin = Vec3d::Zero();     ///< world coordinates of the local frame's origin
   DomainBox domain;                 ///< local frame
-  std::shared_ptr<const TerrainSdf> terrain; ///< optional ground
-  BoundaryCondition terrainBoundary{BoundaryType::Friction, Real(0.3)};
+  /// Contact law of each face of the domain box (x_min, x_max, y_min, y_max, z_min, z_max);
+  /// null leaves the face open (material passes and is removed).
+  std::array<std::shared_ptr<const ContactLaw>, 6> faces{
+      makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{}),
+      makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{})};
+  std::shared_ptr<const Sdf> terrain; ///< optional ground
+  std::shared_ptr<const ContactLaw> terrainLaw = makeContactLaw(CoulombLaw{Real(0.3)});
+  std::vector<StructureSpec> structures;
 };
 
 /// Wall-clock seconds spent in each phase of the step, summed over the run.
 struct PhaseTimes {
-  double bin = 0, terrain = 0, p2g = 0, grid = 0, g2p = 0, cull = 0;
-  double total() const { return bin + terrain + p2g + grid + g2p + cull; }
+  double bin = 0, colliders = 0, p2g = 0, grid = 0, g2p = 0, cull = 0;
+  double total() const { return bin + colliders + p2g + grid + g2p + cull; }
 };
 
 /// Thrown when a particle's velocity or stress becomes NaN/inf; the message names the step,
@@ -69,6 +92,11 @@ public:
   double maxSpeed() const { return maxSpeed_; }
   double maxWaveSpeed() const;
 
+  /// Every collider (terrain, structures, closed faces, in the order they act) and the load each
+  /// took in the last step.
+  const std::vector<std::unique_ptr<Collider>>& colliders() const { return colliders_; }
+  const std::vector<ColliderLoad>& colliderLoads() const { return loads_; }
+
   double initialMass() const { return initialMass_; }
   double totalMass() const;
   /// Mass of particles that left the domain, per material index.
@@ -96,6 +124,7 @@ public:
   void load(const StateArchive& a);
 
 private:
+  void buildColliders();
   void cullEscaped();
   void checkFinite(size_t nonFinite) const;
 
@@ -103,7 +132,9 @@ private:
   std::vector<std::unique_ptr<MaterialGroup>> groups_;
   std::vector<MaterialGroup*> groupPtrs_;
   SparseGrid grid_;
-  std::unique_ptr<TerrainCache> terrainCache_;
+  std::vector<std::unique_ptr<Collider>> colliders_;
+  std::vector<Collider*> colliderPtrs_;
+  std::vector<ColliderLoad> loads_;
   double time_ = 0;
   uint64_t steps_ = 0, particleSteps_ = 0;
   double maxSpeed_ = 0;

@@ -44,11 +44,13 @@ inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, s
     P.C[p] = C;
     update(p, C);
     P.x[p] += dt * vel;
+    // x - x is 0 for finite x and NaN otherwise: one test catches a bad stress in this step.
+    const Sym3& t = P.tau[p];
+    const Real finite = (t.xx - t.xx) + (t.yy - t.yy) + (t.zz - t.zz) + (t.xy - t.xy) + (t.xz - t.xz) + (t.yz - t.yz);
     const Real s2 = vel.squaredNorm();
-    if (!(s2 <= maxSpeed2)) {
-      if (std::isfinite(s2)) maxSpeed2 = s2;
-      else ++stats.nonFinite;
-    }
+    const bool badSpeed = !std::isfinite(s2);
+    if (!badSpeed && s2 > maxSpeed2) maxSpeed2 = s2;
+    if (badSpeed || !(finite == Real(0))) ++stats.nonFinite;
   }
   stats.maxSpeed = std::sqrt(maxSpeed2);
 }

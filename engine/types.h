@@ -43,6 +43,13 @@ struct Sym3 {
   Real trace() const { return xx + yy + zz; }
 };
 
+/// Axis-aligned domain box in the local frame. Nodes on or beyond a face meet the face's collider
+/// (when it has one); particles beyond a face are removed and their mass reported (half a cell
+/// beyond a closed face, at an open one).
+struct DomainBox {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Ones();
+};
+
 /// Integer coordinate of an 8x8x8 block of grid nodes (node index >> 3).
 struct BlockCoord {
   int32_t x = 0, y = 0, z = 0;

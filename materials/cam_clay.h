@@ -99,8 +99,8 @@ struct CamClayModel {
     q = s3mu * Y;
   }
 
-  /// Return mapping; true when eps was changed.
-  bool project(Vec3d& eps, State& s) const {
+  /// Return mapping; true when eps was changed. Rate-independent: dt unused.
+  bool project(Vec3d& eps, State& s, double /*dt*/) const {
     const double K = elastic.bulk(), k = std::sqrt(1.5) * 2 * elastic.mu;
     const double tr = eps.sum(), pTr = -K * tr;
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);

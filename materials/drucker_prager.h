@@ -40,12 +40,16 @@ struct DruckerPragerModel {
     float plasticStrain = 0; ///< accumulated deviatoric plastic Hencky strain e
   };
 
-  DruckerPragerModel() = default;
-  DruckerPragerModel(const HenckyElasticity& e, const DruckerPragerParams& p)
-      : elastic(e), params(p), gammaResidual_(gammaOf(p.residualFrictionAngle, p.cone)) {}
+  DruckerPragerModel() : DruckerPragerModel(HenckyElasticity{}, DruckerPragerParams{}) {}
+  DruckerPragerModel(const HenckyElasticity& e, const DruckerPragerParams& p) : elastic(e) { setParams(p); }
 
   HenckyElasticity elastic;
-  DruckerPragerParams params;
+  /// Strength parameters; set through setParams so the cached residual gamma follows them.
+  const DruckerPragerParams& params() const { return params_; }
+  void setParams(const DruckerPragerParams& p) {
+    params_ = p;
+    gammaResidual_ = gammaOf(p.residualFrictionAngle, p.cone);
+  }
 
   /// gamma(phi) of the cone fit, and d gamma / d phi.
   static double gammaOf(double phi, DruckerPragerCone cone = DruckerPragerCone::Compression) {
@@ -64,11 +68,11 @@ struct DruckerPragerModel {
     default: return 18 * c / ((3 - s) * (3 - s));
     }
   }
-  double gamma(double e) const { return gammaOf(frictionAngle(e), params.cone); }
+  double gamma(double e) const { return gammaOf(frictionAngle(e), params_.cone); }
   double frictionAngle(double e) const {
-    return params.residualFrictionAngle + (params.frictionAngle - params.residualFrictionAngle) * std::exp(-params.softening * e);
+    return params_.residualFrictionAngle + (params_.frictionAngle - params_.residualFrictionAngle) * std::exp(-params_.softening * e);
   }
-  double cohesion(double e) const { return params.cohesion * std::exp(-params.softening * e); }
+  double cohesion(double e) const { return params_.cohesion * std::exp(-params_.softening * e); }
 
   /// Yield function of principal Hencky strains at accumulated plastic strain e (Pa).
   double yield(const Vec3d& eps, double e) const {
@@ -85,24 +89,24 @@ struct DruckerPragerModel {
 
   /// Constant strength (no softening): gamma and c need no trigonometry per particle.
   bool softens() const {
-    return params.softening > 0 && (params.cohesion > 0 || params.frictionAngle != params.residualFrictionAngle);
+    return params_.softening > 0 && (params_.cohesion > 0 || params_.frictionAngle != params_.residualFrictionAngle);
   }
 
-  /// Return mapping; true when eps was changed (plastic step).
-  bool project(Vec3d& eps, State& s) const {
+  /// Return mapping; true when eps was changed (plastic step). Rate-independent: dt unused.
+  bool project(Vec3d& eps, State& s, double /*dt*/) const {
     const double K = elastic.bulk(), k = std::sqrt(1.5) * 2 * elastic.mu;
     const double tr = eps.sum(), p = -K * tr;
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);
     const double a = dev.norm(); // |dev eps|, q = k a
     const double e0 = s.plasticStrain;
     if (!softens()) {
-      if (k * a - gammaResidual_ * (p + params.cohesion) <= 0) return false;
-      if (p + params.cohesion <= 0) {
-        eps = Vec3d::Constant(params.cohesion / (3 * K));
+      if (k * a - gammaResidual_ * (p + params_.cohesion) <= 0) return false;
+      if (p + params_.cohesion <= 0) {
+        eps = Vec3d::Constant(params_.cohesion / (3 * K));
         s.plasticStrain = float(e0 + a);
         return true;
       }
-      const double aNew = gammaResidual_ * (p + params.cohesion) / k;
+      const double aNew = gammaResidual_ * (p + params_.cohesion) / k;
       eps = Vec3d::Constant(tr / 3) + (aNew / a) * dev;
       s.plasticStrain = float(e0 + a - aNew);
       return true;
@@ -118,11 +122,11 @@ struct DruckerPragerModel {
     // h(d) = k (a - d) - gamma(e0 + d) (p + c(e0 + d)): h(0) > 0 >= h(a); find its root.
     auto h = [&](double d, double& dh) {
       const double e = e0 + d, phi = frictionAngle(e), c = cohesion(e);
-      const double g = gammaOf(phi, params.cone);
-      const double dg = gammaSlope(phi, params.cone) *
-                        (-params.softening * (params.frictionAngle - params.residualFrictionAngle) *
-                         std::exp(-params.softening * e));
-      const double dc = -params.softening * c;
+      const double g = gammaOf(phi, params_.cone);
+      const double dg = gammaSlope(phi, params_.cone) *
+                        (-params_.softening * (params_.frictionAngle - params_.residualFrictionAngle) *
+                         std::exp(-params_.softening * e));
+      const double dc = -params_.softening * c;
       dh = -k - dg * (p + c) - g * dc;
       return k * (a - d) - g * (p + c);
     };
@@ -144,6 +148,7 @@ struct DruckerPragerModel {
   }
 
 private:
+  DruckerPragerParams params_;
   double gammaResidual_ = 0; ///< gamma of the residual friction angle (the constant-strength fast path)
 };
 

@@ -14,7 +14,7 @@ struct ElasticModel {
 
   HenckyElasticity elastic;
 
-  bool project(Vec3d&, State&) const { return false; }
+  bool project(Vec3d&, State&, double /*dt*/) const { return false; }
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
   static std::vector<std::string> stateScalarNames() { return {}; }

@@ -5,6 +5,7 @@
 #include "engine/transfer_g2p.h"
 #include "materials/tait_water.h"
 
+#include <atomic>
 #include <cmath>
 #include <unordered_map>
 
@@ -32,9 +33,15 @@ public:
       model.update(dJ[p], C, dt, particles.tau[p]);
       minDJ = std::min(minDJ, dJ[p]);
     });
-    stats.minFluidJ = std::min(stats.minFluidJ, 1 + minDJ);
+    // This group's most compressed particle of the step (a minimum: independent of block order).
+    float cur = stepMinJ_.load(std::memory_order_relaxed);
+    while (1 + minDJ < cur && !stepMinJ_.compare_exchange_weak(cur, 1 + minDJ, std::memory_order_relaxed)) {
+    }
   }
-  void afterStep(const G2PStats& stats) override { minJ_ = std::max(0.5f, std::min(1.0f, stats.minFluidJ)); }
+  void afterStep() override {
+    minJ_ = std::max(0.5f, std::min(1.0f, stepMinJ_.load()));
+    stepMinJ_ = 1;
+  }
 
   bool hydrostatic = true; ///< start at rest under hydrostatic pressure (gravity along -z)
 
@@ -82,7 +89,8 @@ public:
   }
 
 private:
-  float minJ_ = 1;
+  float minJ_ = 1;                  ///< most compressed particle of the last step (sets the sound speed)
+  std::atomic<float> stepMinJ_{1};
 };
 
 } // namespace talus

@@ -34,10 +34,6 @@ struct HenckyElasticity {
   double waveSpeed(double rho) const { return std::sqrt((lambda + 2 * mu) / rho); }
 };
 
-/// Kirchhoff invariants of principal Hencky strains: p = -K tr(eps) (compression positive),
-/// q = sqrt(3/2) 2 mu |dev eps|.
-inline double henckyPressure(const HenckyElasticity& e, const Vec3d& eps) { return -e.bulk() * eps.sum(); }
-
 namespace detail {
 
 /// Symmetric 3x3 matrix in double: (xx, yy, zz, xy, xz, yz). Products below are only taken
@@ -104,8 +100,8 @@ inline SymD expSmall(const SymD& A) {
 
 /// One solid particle update: F_trial -> Hencky strain -> model.project (return mapping) -> F^E
 /// and Kirchhoff stress. `Model` provides State, `elastic` (HenckyElasticity), project(eps,
-/// state) on principal strains, and depends on the strain only through p and q (both models here,
-/// Drucker-Prager and Cam Clay, are Lode-angle independent).
+/// state, dt) on principal strains (dt for rate-dependent models), and depends on the strain only
+/// through p and q (both models here, Drucker-Prager and Cam Clay, are Lode-angle independent).
 ///
 /// Usual path (elastic strains below ~0.12, i.e. |b - I| <= 0.25): everything stays in tensor
 /// form. eps = log(b)/2 by a series; the return is applied to a principal vector with the same
@@ -117,7 +113,7 @@ inline SymD expSmall(const SymD& A) {
 /// the reflection, takes the signed SVD.
 template <class Model>
 inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model::State& state,
-                        Mat3& Fout, Sym3& tau) {
+                        Mat3& Fout, Sym3& tau, double dt) {
   using detail::SymD;
   const double J = Ftrial.determinant();
   const Mat3d b = Ftrial * Ftrial.transpose();
@@ -129,7 +125,7 @@ inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model:
     const double a = std::sqrt(dev.norm2());
     Vec3d principal = Vec3d::Constant(tr / 3) + a * Vec3d(1, -1, 0) / std::sqrt(2.0);
     SymD epsNew = eps;
-    if (model.project(principal, state)) {
+    if (model.project(principal, state, dt)) {
       const double trNew = principal.sum();
       const double aNew = (principal - Vec3d::Constant(trNew / 3)).norm();
       epsNew = (dev * (a > 0 ? aNew / a : 0.0)).plusIdentity(trNew / 3);
@@ -164,7 +160,7 @@ inline void updateSolid(const Model& model, const Mat3d& Ftrial, typename Model:
     modified |= s != stretch[i];
     eps[i] = std::log(s);
   }
-  modified |= model.project(eps, state);
+  modified |= model.project(eps, state, dt);
   if (modified) {
     if (J > 1e-12) {
       const Vec3d r(std::exp(eps[0]) / stretch[0], std::exp(eps[1]) / stretch[1], std::exp(eps[2]) / stretch[2]);

@@ -25,7 +25,7 @@ public:
     const double dt = blk.dt;
     gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C) {
       const Mat3d Ftrial = (Mat3d::Identity() + dt * C.template cast<double>()) * F[p].template cast<double>();
-      updateSolid(model, Ftrial, state[p], F[p], particles.tau[p]);
+      updateSolid(model, Ftrial, state[p], F[p], particles.tau[p], dt);
     });
   }
 

@@ -12,21 +12,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
-
-/// Runs the talus binary with `args`; returns its exit status and fills `out` with stdout.
-int runTalus(const std::string& args, std::string& out) {
-  const std::string cmd = "\"" TALUS_BINARY "\" " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buf{};
-  out.clear();
-  while (fgets(buf.data(), int(buf.size()), pipe)) out += buf.data();
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-} // namespace
+using talus::test::runTalus;
 
 TEST(AnalysisCommands, CompareOfARasterWithItselfOverlapsCompletelyAndDrawsItsMap) {
   const std::string dir = talus::test::tempDir("analysis_commands");

@@ -21,7 +21,7 @@ DruckerPragerModel makeModel(double phiIni, double phiRes, double c, double chi,
 double stressScale(const DruckerPragerModel& m, const Vec3d& eps) {
   const double tr = eps.sum();
   return std::sqrt(1.5) * 2 * m.elastic.mu * (eps - Vec3d::Constant(tr / 3)).norm() +
-         m.elastic.bulk() * std::abs(tr) + m.params.cohesion + 1.0;
+         m.elastic.bulk() * std::abs(tr) + m.params().cohesion + 1.0;
 }
 } // namespace
 
@@ -45,7 +45,7 @@ TEST(DruckerPrager, ReturnLandsOnTheSurfaceKeepsAdmissibleStatesAndIsIdempotent)
       const Vec3d trial = eps;
       const DruckerPragerModel::State s0 = s;
       const double scale = stressScale(m, trial);
-      if (!m.project(eps, s)) {
+      if (!m.project(eps, s, 1e-3)) {
         EXPECT_LE(m.yield(trial, s0.plasticStrain), 1e-9 * scale);
         EXPECT_EQ(eps, trial); // admissible: untouched
         ++elastic;
@@ -64,7 +64,7 @@ TEST(DruckerPrager, ReturnLandsOnTheSurfaceKeepsAdmissibleStatesAndIsIdempotent)
       // Idempotent: projecting the result again changes nothing (beyond float storage of e).
       Vec3d again = eps;
       DruckerPragerModel::State s2 = s;
-      m.project(again, s2);
+      m.project(again, s2, 1e-3);
       EXPECT_LE((again - eps).norm(), 1e-6 * (devTr + std::abs(trial.sum())));
     }
   EXPECT_GT(plastic, 10000);
@@ -86,14 +86,32 @@ TEST(DruckerPrager, BrittleChi1e10LosesPeakStrengthOnFirstYieldWithoutBlowUp) {
   const auto m = makeModel(42, 36, 2e6, 1e10);
   // Pure shear just beyond the intact surface at zero pressure: q = gamma c (1 + 1e-3).
   const double k = std::sqrt(1.5) * 2 * m.elastic.mu;
-  const double q = DruckerPragerModel::gammaOf(m.params.frictionAngle) * m.params.cohesion * 1.001;
+  const double q = DruckerPragerModel::gammaOf(m.params().frictionAngle) * m.params().cohesion * 1.001;
   Vec3d eps = Vec3d(1, -1, 0) / std::sqrt(2.0) * (q / k);
   DruckerPragerModel::State s;
-  ASSERT_TRUE(m.project(eps, s));
+  ASSERT_TRUE(m.project(eps, s, 1e-3));
   EXPECT_GT(s.plasticStrain, 0.0f);
-  EXPECT_LT(m.cohesion(s.plasticStrain), 1e-6 * m.params.cohesion); // cohesion gone
-  EXPECT_NEAR(m.frictionAngle(s.plasticStrain), m.params.residualFrictionAngle, 1e-9);
+  EXPECT_LT(m.cohesion(s.plasticStrain), 1e-6 * m.params().cohesion); // cohesion gone
+  EXPECT_NEAR(m.frictionAngle(s.plasticStrain), m.params().residualFrictionAngle, 1e-9);
   EXPECT_TRUE(eps.allFinite());
   // At zero pressure the residual, cohesionless material carries no shear.
   EXPECT_NEAR((eps - Vec3d::Constant(eps.sum() / 3)).norm(), 0.0, 1e-12);
+}
+
+TEST(DruckerPrager, ChangedParametersTakeEffectInTheConstantStrengthPath) {
+  // Review defect: the residual gamma of the fast path was cached at construction and went stale
+  // when the parameters changed later. A 30-degree cone yields a state a 40-degree cone carries.
+  DruckerPragerModel m = makeModel(30, 30, 0, 0);
+  const double p = 1e5, K = m.elastic.bulk(), k = std::sqrt(1.5) * 2 * m.elastic.mu;
+  const double q = 1.2 * DruckerPragerModel::gammaOf(30 * M_PI / 180) * p; // 20% beyond the 30-degree cone
+  const Vec3d eps = Vec3d::Constant(-p / (3 * K)) + (q / k) * Vec3d(1, -1, 0) / std::sqrt(2.0);
+  DruckerPragerModel::State s;
+  Vec3d e = eps;
+  EXPECT_TRUE(m.project(e, s, 1e-3));
+  DruckerPragerParams stronger = m.params();
+  stronger.frictionAngle = stronger.residualFrictionAngle = 40 * M_PI / 180;
+  m.setParams(stronger);
+  e = eps;
+  s = {};
+  EXPECT_FALSE(m.project(e, s, 1e-3)) << "the 40-degree cone carries it";
 }

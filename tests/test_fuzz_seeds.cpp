@@ -1,6 +1,6 @@
 // The fuzz target's contract, checked on its seed inputs in the normal suite: every input ends
 // in a scene or an InputError, never another exception.
-#include "io/config/input_error.h"
+#include "io/common/input_error.h"
 #include "io/scene/scene.h"
 
 #include <filesystem>

@@ -4,7 +4,10 @@
 #include "engine/simulation.h"
 #include "io/scene/scene.h"
 
+#include <array>
+#include <cstdio>
 #include <filesystem>
+#include <sys/wait.h>
 #include <memory>
 #include <string>
 
@@ -23,6 +26,19 @@ inline Vec3d meanVelocity(const Simulation& sim) { return sim.meanVelocity(); }
 inline std::string sharedDir() {
   const std::string d = TALUS_SHARED_DIR;
   return std::filesystem::is_directory(d) ? d : std::string();
+}
+
+/// Runs the talus binary with `args`; returns its exit status and fills `out` with its stdout and
+/// stderr.
+inline int runTalus(const std::string& args, std::string& out) {
+  const std::string cmd = "\"" TALUS_BINARY "\" " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buf{};
+  out.clear();
+  while (fgets(buf.data(), int(buf.size()), pipe)) out += buf.data();
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 inline std::string tempDir(const std::string& name) {

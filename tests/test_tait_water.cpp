@@ -1,5 +1,6 @@
 // Tait equation of state and the J update of the fluid group (physics.md 4.3).
 #include "materials/tait_water.h"
+#include "test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -38,4 +39,44 @@ TEST(TaitWater, CompressionFollowsDetOfTheVelocityGradientAndTensionIsCut) {
   w.maxTension = 1e5;
   for (int i = 0; i < 10; ++i) w.update(dJ, C, 1e-3, tau);
   EXPECT_NEAR(w.pressureOfStrain(dJ), -1e5, 1e-2);
+}
+
+TEST(TaitWater, EachWaterMaterialKeepsItsOwnCompressionForItsSoundSpeed) {
+  // Review defect: the most compressed particle of all water groups set every group's sound
+  // speed. A deep column (J well below 1) and a separate shallow pool must each keep their own.
+  auto sim = test::makeSimulation(R"(
+[simulation]
+dx = 0.1
+end_time = 1
+[domain]
+min = [0, 0, 0]
+max = [2, 1, 12]
+walls = "slip"
+[[materials]]
+name = "deep"
+model = "water"
+density = 1000
+sound_speed = 20
+[[materials]]
+name = "shallow"
+model = "water"
+density = 1000
+sound_speed = 20
+[[bodies]]
+material = "deep"
+shape = "box"
+min = [0, 0, 0]
+max = [0.8, 1, 10]
+[[bodies]]
+material = "shallow"
+shape = "box"
+min = [1.2, 0, 0]
+max = [2, 1, 0.2]
+)");
+  sim->step();
+  const MaterialGroup& deep = *sim->groups()[0];
+  const MaterialGroup& shallow = *sim->groups()[1];
+  // 10 m of water with B = rho c^2 / 7: J ~ 0.96 at the bottom, c(J) ~ 15% above c(1).
+  EXPECT_GT(deep.waveSpeed(), 1.1 * 20);
+  EXPECT_LT(shallow.waveSpeed(), 1.02 * 20);
 }

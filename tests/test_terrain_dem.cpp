@@ -9,12 +9,12 @@ using namespace talus;
 
 namespace {
 
-/// Expects readDem to throw a one-line DemError naming `path` and containing `part`.
+/// Expects readDem to throw a one-line InputError naming `path` and containing `part`.
 void expectDemError(const std::string& path, const std::string& part, const DemReadOptions& opt = {}) {
   try {
     readDem(path, opt);
     FAIL() << "no error for " << path;
-  } catch (const DemError& e) {
+  } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
     EXPECT_NE(msg.find(part), std::string::npos) << msg;

@@ -1,6 +1,6 @@
 // DEM -> level set: true distances in the band, voxels on the simulation's grid nodes, the zero
 // level through the DEM's cell-centre elevations, metadata, and the scene's level-set cache.
-#include "io/terrain/level_set_terrain.h"
+#include "io/terrain/vdb_level_set.h"
 #include "io/terrain/dem_level_set.h"
 #include "io/terrain/terrain_loader.h"
 #include "terrain_test_support.h"
@@ -85,7 +85,7 @@ TEST(TerrainLevelSet, TiltedPlaneHoldsTheAnalyticDistanceInTheBand) {
   const double dx = 1.5;
   const Vec3d origin(x0 + 0.3, y0 + 0.7, 950.2); // voxels deliberately off the DEM's cells
   buildDemLevelSet(f, optionsFor(f, dx, origin), dir + "/plane.vdb");
-  const LevelSetTerrain ls(dir + "/plane.vdb", "", origin);
+  const VdbLevelSet ls(dir + "/plane.vdb", "", origin);
   EXPECT_NEAR(ls.voxelSize(), dx, 1e-12);
   EXPECT_TRUE(sameCrs(ls.metadata("crs_wkt"), dem.grid.crsWkt));
   const double norm = std::sqrt(1 + gx * gx + gy * gy);
@@ -128,7 +128,7 @@ TEST(TerrainLevelSet, CurvedTerrainMatchesBruteForceDistance) {
   buildDemLevelSet(f, o, dir + "/cp.vdb");
   o.closestPoint = false;
   buildDemLevelSet(f, o, dir + "/vert.vdb");
-  const LevelSetTerrain cp(dir + "/cp.vdb", "", origin), vert(dir + "/vert.vdb", "", origin);
+  const VdbLevelSet cp(dir + "/cp.vdb", "", origin), vert(dir + "/vert.vdb", "", origin);
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> ui(10, 89), uk(-3, 3);
   double errCp = 0, errVert = 0;
@@ -162,7 +162,7 @@ TEST(TerrainLevelSet, SignIsRightFarBelowAndAboveTheBand) {
     const HeightField f(dem);
     const Vec3d origin(x0, y0, 1400);
     buildDemLevelSet(f, optionsFor(f, 2, origin), dir + "/s.vdb");
-    const LevelSetTerrain ls(dir + "/s.vdb", "", origin);
+    const VdbLevelSet ls(dir + "/s.vdb", "", origin);
     for (int i = 2; i < 118; i += 3)
       for (int j = 2; j < 88; j += 3) {
         const double x = x0 + i * 2 + 0.3, y = y0 + j * 2 + 0.7, z = f.height(x, y);

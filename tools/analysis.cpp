@@ -82,12 +82,12 @@ Polyline Polyline::parse(const std::string& spec) {
     }
     return Polyline(std::move(pts));
   }
-  if (!std::filesystem::exists(spec)) throw DemError(spec + ": file not found (or give the line as \"x,y x,y ...\")");
+  if (!std::filesystem::exists(spec)) throw InputError(spec, "file not found (or give the line as \"x,y x,y ...\")");
   GDALAllRegister();
   CPLPushErrorHandler(CPLQuietErrorHandler);
   GDALDataset* ds = GDALDataset::Open(spec.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY);
   CPLPopErrorHandler();
-  if (!ds) throw DemError(spec + ": not a vector file GDAL/OGR can read");
+  if (!ds) throw InputError(spec, "not a vector file GDAL/OGR can read");
   std::unique_ptr<GDALDataset, void (*)(GDALDataset*)> hold(ds, [](GDALDataset* d) { GDALClose(GDALDataset::ToHandle(d)); });
   std::vector<Eigen::Vector2d> pts;
   for (int l = 0; l < ds->GetLayerCount() && pts.empty(); ++l) {
@@ -109,7 +109,7 @@ Polyline Polyline::parse(const std::string& spec) {
       break;
     }
   }
-  if (pts.size() < 2) throw DemError(spec + ": no line feature with two distinct points");
+  if (pts.size() < 2) throw InputError(spec, "no line feature with two distinct points");
   return Polyline(std::move(pts));
 }
 

@@ -18,7 +18,7 @@ namespace talus::analysis {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Band 1 of a north-up raster with square cells (any format GDAL reads); no-data is NaN.
-/// Throws DemError naming the file.
+/// Throws InputError naming the file.
 DemRaster readRaster(const std::string& path);
 
 /// Bilinear interpolation between cell centres at world (x, y). Within half a cell of the
@@ -36,7 +36,7 @@ public:
   explicit Polyline(std::vector<Eigen::Vector2d> points);
   /// "x,y x,y ..." (at least two points), or a vector file GDAL/OGR reads whose first line
   /// feature (LineString, or the first part of a MultiLineString) is the polyline. Throws
-  /// DemError (file) or std::invalid_argument (text).
+  /// InputError (file) or std::invalid_argument (text).
   static Polyline parse(const std::string& spec);
 
   const std::vector<Eigen::Vector2d>& points() const { return pts_; }

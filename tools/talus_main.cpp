@@ -1,5 +1,5 @@
 // The `talus` command line: run scenes, check them, and (later) prepare terrain and benchmarks.
-#include "io/config/input_error.h"
+#include "io/common/input_error.h"
 #include "io/terrain/dem_raster.h"
 #include "io/run/run_driver.h"
 #include "io/scene/scene.h"
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "Run a scene (the embedded default scene when none is given)");
   run->add_option("scene", scene, "Scene file (TOML)");
   run->add_option("--out", out, "Output directory (overrides [output].directory)");
-  run->add_option("--threads", threads, "Worker threads (default: all)")->check(CLI::NonNegativeNumber);
+  run->add_option("--threads", threads, "Worker threads (default: all)")->check(CLI::PositiveNumber);
   run->add_option("--set", sets, "Override a scene key: --set simulation.dx=0.02");
   run->add_flag("--quiet", quiet, "No progress bar or messages");
   std::string resume;
@@ -123,9 +123,6 @@ int main(int argc, char** argv) {
       std::cout << defaultSceneText();
       return 0;
     }
-  } catch (const DemError& e) { // bad terrain input: same status as a bad scene
-    std::fprintf(stderr, "talus: error: %s\n", e.what());
-    return 2;
   } catch (const InputError& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 2;

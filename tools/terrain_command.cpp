@@ -1,6 +1,6 @@
 #include "tools/terrain_command.h"
 
-#include "io/config/input_error.h"
+#include "io/common/input_error.h"
 #include "io/terrain/dem_level_set.h"
 #include "io/terrain/dem_raster.h"
 #include "io/terrain/synthetic_dem.h"
@@ -68,9 +68,9 @@ int runTerrainCommand(const TerrainCommandOptions& o) {
     b.xmin = surface.xmin(), b.ymin = surface.ymin(), b.xmax = surface.xmax(), b.ymax = surface.ymax();
   } else {
     b.xmin = o.bounds[0], b.ymin = o.bounds[1], b.xmax = o.bounds[2], b.ymax = o.bounds[3];
-    if (!(b.xmax > b.xmin && b.ymax > b.ymin)) throw DemError("--bounds: expected XMIN YMIN XMAX YMAX with XMAX > XMIN, YMAX > YMIN");
+    if (!(b.xmax > b.xmin && b.ymax > b.ymin)) throw InputError("", "--bounds: expected XMIN YMIN XMAX YMAX with XMAX > XMIN, YMAX > YMIN");
     if (b.xmax < surface.xmin() || b.xmin > surface.xmax() || b.ymax < surface.ymin() || b.ymin > surface.ymax())
-      throw DemError("--bounds: the footprint lies outside the DEM");
+      throw InputError("", "--bounds: the footprint lies outside the DEM");
   }
   const LevelSetBuildStats s = buildDemLevelSet(surface, b, o.out);
   std::printf("talus terrain: %s: %d x %d cells of %g m, %s%s\n", o.dem.c_str(), dem.grid.nx, dem.grid.ny,
@@ -90,7 +90,7 @@ int runSynthDemCommand(const SynthDemOptions& o) {
     std::cout << syntheticDemHelp();
     return 0;
   }
-  if (o.kind.empty() || o.out.empty()) throw DemError("synth-dem: give a KIND and --out FILE (or --list)");
+  if (o.kind.empty() || o.out.empty()) throw InputError("", "synth-dem: give a KIND and --out FILE (or --list)");
   auto spec = readTomlString("kind = \"" + o.kind + "\"\n", "synth-dem");
   if (o.cell > 0) applyOverride(*spec, "cell_size=" + std::to_string(o.cell));
   for (const auto& s : o.sets) applyOverride(*spec, s);

@@ -3,7 +3,8 @@
 // tightens all of them.
 #pragma once
 
-#include <stdexcept>
+#include "io/common/input_error.h"
+
 #include <string>
 
 namespace talus {
@@ -16,10 +17,5 @@ struct ResourceLimits {
 
 /// Process-wide limits (the defaults above unless changed).
 ResourceLimits& resourceLimits();
-
-class ResourceLimitError : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
 
 } // namespace talus

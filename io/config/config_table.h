@@ -5,7 +5,7 @@
 // remembered, so keys nobody asked for can be reported afterwards with the closest valid name.
 #pragma once
 
-#include "io/config/input_error.h"
+#include "io/common/input_error.h"
 
 #include <Eigen/Dense>
 #include <map>

@@ -51,7 +51,7 @@ struct HazardMaps::Impl {
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
   double endTime = 0;
-  std::shared_ptr<const TerrainSdf> terrain;
+  std::shared_ptr<const Sdf> terrain;
   Vec3d origin = Vec3d::Zero();
   double zLo = 0, zHi = 0, dx = 1;
 

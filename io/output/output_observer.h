@@ -34,6 +34,9 @@ public:
   virtual void save(StateArchive& a, const std::string& prefix) const {}
   virtual void load(const StateArchive& a, const std::string& prefix) {}
 
+  /// Entries this output adds to summary.json: (key, JSON value), e.g. the peak collider loads.
+  virtual std::vector<std::pair<std::string, std::string>> summary() const { return {}; }
+
   /// Files written so far, relative to the output directory.
   const std::vector<std::string>& files() const { return files_; }
 

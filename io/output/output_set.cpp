@@ -81,7 +81,7 @@ std::vector<std::string> OutputSet::names() const {
 
 std::vector<OutputReport> OutputSet::reports() const {
   std::vector<OutputReport> r;
-  for (size_t i = 0; i < outputs_.size(); ++i) r.push_back({outputs_[i]->name(), seconds_[i], outputs_[i]->files()});
+  for (size_t i = 0; i < outputs_.size(); ++i) r.push_back({outputs_[i]->name(), seconds_[i], outputs_[i]->files(), outputs_[i]->summary()});
   return r;
 }
 

@@ -16,6 +16,7 @@ struct OutputReport {
   std::string name;
   double seconds = 0;
   std::vector<std::string> files;
+  std::vector<std::pair<std::string, std::string>> summary; ///< top-level summary.json entries
 };
 
 

@@ -1,7 +1,9 @@
 // What a run writes: the [output] section of a scene (docs/outputs.md lists every key).
 //
-// Every output is off unless requested (HDF5 particle frames and the time series excepted, which
-// are cheap), so a scene without maps never accumulates them.
+// Defaults: the time series (with its plots and collider loads) is on; frames are written only
+// when frame_interval > 0, and then as HDF5 particles and VDB volumes unless switched off; VDB
+// points, PLY and hazard maps are off unless requested, so a scene without maps never
+// accumulates them.
 #pragma once
 
 #include <Eigen/Dense>
@@ -67,6 +69,7 @@ struct OutputSettings {
   bool series = true;       ///< series.csv
   double seriesInterval = 0; ///< s between rows; 0 = end_time / 1000
   bool plots = true;        ///< plots/*.png from the series
+  bool loads = true;        ///< force and moment on every collider in the series
   std::vector<std::string> waterMaterials; ///< explicit; otherwise models named "water"
   std::vector<SectionSpec> sections;
   std::vector<PathSpec> paths;

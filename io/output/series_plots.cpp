@@ -203,6 +203,16 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
   plot("front", "Front position along paths", "distance along path (m)", byPrefix(t, "front_m"));
   plot("front_speed", "Front speed along paths", "speed (m/s)", byPrefix(t, "front_speed_m_s"));
   plot("probe_speed", "Speed at probes (moving with the flow)", "speed (m/s)", byPrefix(t, "probe_speed_m_s"));
+  // Loads on colliders, in kN: the mean over each row's interval (steps) and its largest step.
+  auto kiloNewton = [](std::vector<ChartLine> lines, bool steps) {
+    for (auto& l : lines) {
+      for (double& y : l.y) y *= 1e-3;
+      l.steps = steps;
+    }
+    return lines;
+  };
+  plot("loads", "Force on colliders (mean over each row's interval)", "force (kN)", kiloNewton(byPrefix(t, "force_N"), true));
+  plot("max_loads", "Largest force of a step on colliders", "force (kN)", kiloNewton(byPrefix(t, "max_force_N"), true));
   plot("water_surface", "Highest water surface", "elevation (m)", byPrefix(t, "max_water_surface_m"));
   return files;
 }

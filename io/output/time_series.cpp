@@ -1,6 +1,7 @@
 #include "io/output/time_series.h"
 
 #include "io/common/atomic_file.h"
+#include "io/output/collider_loads.h"
 #include "io/output/front_tracker.h"
 #include "io/output/probe_tracker.h"
 #include "io/output/section_discharge.h"
@@ -129,6 +130,11 @@ TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTi
   for (const auto& sec : s.sections) columns_.push_back(std::make_unique<SectionDischarge>(sec));
   for (const auto& p : s.paths) columns_.push_back(std::make_unique<FrontTracker>(p, particleSpacing));
   for (const auto& p : s.probes) columns_.push_back(std::make_unique<ProbeTracker>(p));
+  if (s.loads) {
+    auto loads = std::make_unique<ColliderLoadColumns>();
+    loads_ = loads.get();
+    columns_.push_back(std::move(loads));
+  }
   columns_.push_back(std::make_unique<WaterSurfaceColumns>(s.waterMaterials));
 }
 
@@ -204,6 +210,11 @@ void TimeSeries::writeCsv() {
 }
 
 void TimeSeries::onFrame(const Simulation&, int) { writeCsv(); }
+
+std::vector<std::pair<std::string, std::string>> TimeSeries::summary() const {
+  if (!loads_) return {};
+  return {{"loads", loads_->summaryJson()}};
+}
 
 void TimeSeries::onFinish(const Simulation& sim, bool completed) {
   if (completed && (table_.rows.empty() || table_.rows.back()[0] < sim.time())) sample(sim);

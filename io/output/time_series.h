@@ -33,6 +33,7 @@ public:
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;
 
+  std::vector<std::pair<std::string, std::string>> summary() const override;
   const SeriesTable& table() const { return table_; }
   double interval() const { return interval_; }
 
@@ -44,6 +45,7 @@ private:
   bool plots_;
   double interval_;
   std::vector<std::unique_ptr<SeriesColumns>> columns_;
+  class ColliderLoadColumns* loads_ = nullptr; ///< one of columns_, when loads are written
   SeriesTable table_;
   double lastSample_ = 0, nextSample_ = 0, lastDt_ = 0;
 };

@@ -31,7 +31,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   const double checkpointEvery =
       scene.output.checkpointInterval < 0 ? scene.endTime / 10 : scene.output.checkpointInterval;
   const std::string checkpointFile = checkpointPath(res.outDir);
-  int frame = 0, checkpoints = 0;
+  int frame = 0;
   double nextCheckpoint = checkpointEvery > 0 ? checkpointEvery : std::numeric_limits<double>::infinity();
   // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
   // resumed run then replaces their accumulated state with the checkpoint's.
@@ -51,9 +51,6 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
       a.putValue("driver/next_frame", int32_t(frame));
       a.putValue("driver/next_checkpoint", nextCheckpoint);
     });
-    // Test hook: die like a killed process right after the n-th checkpoint.
-    static const char* kill = std::getenv("TALUS_TEST_EXIT_AFTER_CHECKPOINT");
-    if (kill && ++checkpoints == std::atoi(kill)) std::_Exit(137);
   };
 
   ProgressBar bar(scene.endTime, stderr, opt.progress);

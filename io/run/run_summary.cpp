@@ -58,7 +58,7 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
   j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";
   const PhaseTimes& t = sim.phaseTimes();
-  j << "  \"phase_seconds\": {\"bin\": " << num(t.bin) << ", \"terrain\": " << num(t.terrain) << ", \"p2g\": "
+  j << "  \"phase_seconds\": {\"bin\": " << num(t.bin) << ", \"colliders\": " << num(t.colliders) << ", \"p2g\": "
     << num(t.p2g) << ", \"grid\": " << num(t.grid) << ", \"g2p\": " << num(t.g2p) << ", \"cull\": " << num(t.cull)
     << "},\n";
   j << "  \"materials\": [";
@@ -88,7 +88,10 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
     j << "]}";
     first = false;
   }
-  j << "\n  ]\n}\n";
+  j << "\n  ]";
+  for (const OutputReport& o : info.outputs)
+    for (const auto& [key, value] : o.summary) j << ",\n  " << jsonString(key) << ": " << value;
+  j << "\n}\n";
   writeAtomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << j.str();

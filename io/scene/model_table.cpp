@@ -1,10 +1,10 @@
 #include "io/scene/model_table.h"
 
+#include "io/scene/material_presets.h"
 #include "materials/cam_clay.h"
 #include "materials/drucker_prager.h"
 #include "materials/elastic.h"
 #include "materials/fluid_group.h"
-#include "io/scene/material_presets.h"
 #include "materials/solid_group.h"
 
 #include <cmath>
@@ -12,11 +12,6 @@
 #include <optional>
 
 namespace talus {
-
-const std::vector<std::string>& materialModelNames() {
-  static const std::vector<std::string> names{"elastic", "drucker_prager", "cam_clay", "water"};
-  return names;
-}
 
 namespace {
 
@@ -57,6 +52,13 @@ private:
   const MaterialPreset* preset_;
 };
 
+/// What every group constructor receives besides its model.
+struct GroupHead {
+  std::string name;
+  int index;
+  double density;
+};
+
 HenckyElasticity readElasticity(const MaterialReader& r) {
   const double scale = r.positive("elastic_scale", 1.0);
   const double E = r.positive("youngs_modulus") * scale;
@@ -64,7 +66,79 @@ HenckyElasticity readElasticity(const MaterialReader& r) {
   return HenckyElasticity::fromYoung(E, nu);
 }
 
+std::unique_ptr<MaterialGroup> buildElastic(const MaterialReader& r, const GroupHead& h) {
+  ElasticModel m;
+  m.elastic = readElasticity(r);
+  return std::make_unique<SolidGroup<ElasticModel>>(h.name, h.index, h.density, m);
+}
+
+std::unique_ptr<MaterialGroup> buildDruckerPrager(const MaterialReader& r, const GroupHead& h) {
+  const HenckyElasticity e = readElasticity(r);
+  DruckerPragerParams p;
+  p.frictionAngle = r.angle("friction_angle");
+  p.residualFrictionAngle = r.angle("residual_friction_angle", p.frictionAngle * 180 / M_PI);
+  p.cohesion = r.nonNegative("cohesion", 0.0);
+  p.softening = r.nonNegative("softening", 0.0);
+  const std::string cone = r.table().choice("cone", "compression", {"compression", "plane_strain", "extension"});
+  p.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
+           : cone == "extension"  ? DruckerPragerCone::Extension
+                                  : DruckerPragerCone::Compression;
+  return std::make_unique<SolidGroup<DruckerPragerModel>>(h.name, h.index, h.density, DruckerPragerModel(e, p));
+}
+
+std::unique_ptr<MaterialGroup> buildCamClay(const MaterialReader& r, const GroupHead& h) {
+  CamClayModel m;
+  m.elastic = readElasticity(r);
+  m.params.M = r.positive("critical_state_slope");
+  m.params.Ms = r.positive("critical_state_slope_flowing", m.params.M);
+  m.params.p0 = r.positive("preconsolidation_pressure");
+  m.params.beta = r.nonNegative("tension_ratio", 0.0);
+  m.params.xi = r.positive("hardening");
+  auto g = std::make_unique<SolidGroup<CamClayModel>>(h.name, h.index, h.density, m);
+  g->initialState.volumetricPlasticStrain = float(m.initialVolumetricStrain());
+  return g;
+}
+
+std::unique_ptr<MaterialGroup> buildWater(const MaterialReader& r, const GroupHead& h) {
+  const ConfigTable& t = r.table();
+  TaitWaterModel m;
+  m.exponent = r.get("tait_exponent", 7.0, 1.0, 20.0, false, false);
+  if (t.has("sound_speed")) {
+    if (t.has("bulk_modulus")) t.fail("sound_speed", "give either bulk_modulus or sound_speed, not both");
+    const double c = t.positive("sound_speed");
+    m.bulk = h.density * c * c / m.exponent; // c^2 = k B / rho0
+  } else {
+    m.bulk = r.positive("bulk_modulus");
+  }
+  m.viscosity = r.nonNegative("viscosity", 0.0);
+  m.maxTension = r.get("max_tension", 0.0, 0, m.bulk, false, true);
+  auto g = std::make_unique<FluidGroup>(h.name, h.index, h.density, m);
+  g->hydrostatic = t.boolean("hydrostatic", true);
+  return g;
+}
+
+struct ModelRow {
+  const char* name;
+  std::unique_ptr<MaterialGroup> (*build)(const MaterialReader&, const GroupHead&);
+};
+
+const std::vector<ModelRow>& modelTable() {
+  static const std::vector<ModelRow> rows{
+      {ElasticModel::kName, buildElastic},
+      {DruckerPragerModel::kName, buildDruckerPrager},
+      {CamClayModel::kName, buildCamClay},
+      {TaitWaterModel::kName, buildWater},
+  };
+  return rows;
+}
+
 } // namespace
+
+std::vector<std::string> materialModelNames() {
+  std::vector<std::string> names;
+  for (const auto& row : modelTable()) names.push_back(row.name);
+  return names;
+}
 
 std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int index) {
   const std::string name = t.string("name");
@@ -85,53 +159,11 @@ std::unique_ptr<MaterialGroup> createMaterialGroup(const ConfigTable& t, int ind
     t.fail("", "missing required key 'model' (or a 'preset')");
   }
   const MaterialReader r(t, preset);
-  const double density = r.positive("density");
-
-  if (model == "elastic") {
-    ElasticModel m;
-    m.elastic = readElasticity(r);
-    return std::make_unique<SolidGroup<ElasticModel>>(name, index, density, m);
-  }
-  if (model == "drucker_prager") {
-    const HenckyElasticity e = readElasticity(r);
-    DruckerPragerParams p;
-    p.frictionAngle = r.angle("friction_angle");
-    p.residualFrictionAngle = r.angle("residual_friction_angle", p.frictionAngle * 180 / M_PI);
-    p.cohesion = r.nonNegative("cohesion", 0.0);
-    p.softening = r.nonNegative("softening", 0.0);
-    const std::string cone = t.choice("cone", "compression", {"compression", "plane_strain", "extension"});
-    p.cone = cone == "plane_strain" ? DruckerPragerCone::PlaneStrain
-             : cone == "extension"  ? DruckerPragerCone::Extension
-                                    : DruckerPragerCone::Compression;
-    return std::make_unique<SolidGroup<DruckerPragerModel>>(name, index, density, DruckerPragerModel(e, p));
-  }
-  if (model == "cam_clay") {
-    CamClayModel m;
-    m.elastic = readElasticity(r);
-    m.params.M = r.positive("critical_state_slope");
-    m.params.Ms = r.positive("critical_state_slope_flowing", m.params.M);
-    m.params.p0 = r.positive("preconsolidation_pressure");
-    m.params.beta = r.nonNegative("tension_ratio", 0.0);
-    m.params.xi = r.positive("hardening");
-    auto g = std::make_unique<SolidGroup<CamClayModel>>(name, index, density, m);
-    g->initialState.volumetricPlasticStrain = float(m.initialVolumetricStrain());
-    return g;
-  }
-  // water
-  TaitWaterModel m;
-  m.exponent = r.get("tait_exponent", 7.0, 1.0, 20.0, false, false);
-  if (t.has("sound_speed")) {
-    if (t.has("bulk_modulus")) t.fail("sound_speed", "give either bulk_modulus or sound_speed, not both");
-    const double c = t.positive("sound_speed");
-    m.bulk = density * c * c / m.exponent; // c^2 = k B / rho0
-  } else {
-    m.bulk = r.positive("bulk_modulus");
-  }
-  m.viscosity = r.nonNegative("viscosity", 0.0);
-  m.maxTension = r.get("max_tension", 0.0, 0, m.bulk, false, true);
-  auto g = std::make_unique<FluidGroup>(name, index, density, m);
-  g->hydrostatic = t.boolean("hydrostatic", true);
-  return g;
+  const GroupHead head{name, index, r.positive("density")};
+  for (const auto& row : modelTable())
+    if (model == row.name) return row.build(r, head);
+  // A preset naming a model the table lacks: a defect of the preset table, said plainly.
+  t.fail("preset", "preset model '" + model + "' is not in the model table");
 }
 
 } // namespace talus

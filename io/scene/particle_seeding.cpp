@@ -24,6 +24,12 @@ int cubeRoot(int n) {
   const int r = int(std::lround(std::cbrt(double(n))));
   return r * r * r == n ? r : 0;
 }
+bool insideSolid(const SeedSpec& spec, const Vec3d& x) {
+  if (spec.terrain && spec.terrain->distance(x) < 0) return true;
+  for (const Sdf* s : spec.solids)
+    if (s->distance(x) < 0) return true;
+  return false;
+}
 } // namespace
 
 Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
@@ -59,7 +65,7 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
   const size_t before = P.size();
   const double candidates = double(c1[0] - c0[0]) * double(c1[1] - c0[1]) * double(c1[2] - c0[2]) * spec.particlesPerCell;
   if (candidates > spec.maxParticles)
-    throw ResourceLimitError("would test " + std::to_string(candidates) + " particle positions, more than max_particles = " +
+    throw InputError("", "would test " + std::to_string(candidates) + " particle positions, more than max_particles = " +
                              std::to_string(spec.maxParticles) + " (is dx too small?)");
   for (int64_t i = c0[0]; i < c1[0]; ++i)
     for (int64_t j = c0[1]; j < c1[1]; ++j)
@@ -67,7 +73,7 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
         for (int s = 0; s < spec.particlesPerCell; ++s) {
           const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
           if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
-          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          if (insideSolid(spec, x)) continue;
           P.x.push_back(x.cast<Real>());
           P.v.push_back(velocity(x).cast<Real>());
           P.C.push_back(C0);
@@ -93,7 +99,7 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
   const size_t rows = size_t(std::max<int64_t>(0, c1[0] - c0[0]));
   const double columns = double(rows) * double(std::max<int64_t>(0, c1[1] - c0[1]));
   if (columns * spec.particlesPerCell > spec.maxParticles)
-    throw ResourceLimitError("would seed at least " + std::to_string(columns * spec.particlesPerCell) +
+    throw InputError("", "would seed at least " + std::to_string(columns * spec.particlesPerCell) +
                              " particles, more than max_particles = " + std::to_string(spec.maxParticles) +
                              " (is dx too small?)");
   // Per x-row of columns: positions and velocities, concatenated in row order afterwards.
@@ -109,7 +115,7 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
         for (int s = 0; s < spec.particlesPerCell; ++s) {
           const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
           if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
-          if (spec.terrain && spec.terrain->distance(x) < 0) continue;
+          if (insideSolid(spec, x)) continue;
           xs[r].push_back(x.cast<Real>());
           vs[r].push_back(velocity(x).cast<Real>());
         }

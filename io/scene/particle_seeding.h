@@ -2,9 +2,10 @@
 #pragma once
 
 #include "engine/material_group.h"
-#include "engine/terrain.h"
+#include "engine/sdf.h"
 
 #include <functional>
+#include <vector>
 
 namespace talus {
 
@@ -13,8 +14,9 @@ struct SeedSpec {
   int particlesPerCell = 8;
   double jitter = 0;         ///< lattice jitter as a fraction of the sub-cell spacing, [0, 1]
   uint64_t seed = 0;
-  const TerrainSdf* terrain = nullptr; ///< samples inside the ground are skipped
-  double maxParticles = 2e9;           ///< refuse (ResourceLimitError) to seed more than this
+  const Sdf* terrain = nullptr; ///< samples inside the ground are skipped
+  std::vector<const Sdf*> solids; ///< and inside these (structures)
+  double maxParticles = 2e9;           ///< refuse (InputError) to seed more than this
 };
 
 /// Sample offsets inside a unit cell: a lattice when particles_per_cell is a cube (1, 8, 27...),

@@ -1,13 +1,15 @@
 #include "io/scene/scene.h"
 
-#include "engine/union_terrain.h"
+#include "engine/sdf_solids.h"
 #include "io/terrain/shape_reader.h"
 #include "io/scene/body_seeding.h"
 #include "io/common/resource_limits.h"
 #include "io/terrain/terrain_bodies.h"
 #include "io/terrain/terrain_loader.h"
 #include "io/config/toml_reader.h"
+#include "io/scene/contact_law_table.h"
 #include "io/scene/model_table.h"
+#include "io/scene/structure_reader.h"
 
 #include <cmath>
 #include <cstdio>
@@ -17,23 +19,6 @@
 namespace talus {
 
 namespace {
-
-BoundaryCondition readBoundary(const ConfigTable& t, const std::string& typeKey, const std::string& frictionKey,
-                               const std::string& fallback, bool allowOpen) {
-  std::vector<std::string> kinds{"sticky", "slip", "friction"};
-  if (allowOpen) kinds.push_back("open");
-  const std::string s = t.choice(typeKey, fallback, kinds);
-  BoundaryCondition bc;
-  bc.type = s == "sticky" ? BoundaryType::Sticky : s == "slip" ? BoundaryType::Slip
-            : s == "friction" ? BoundaryType::Friction : BoundaryType::Open;
-  if (bc.type == BoundaryType::Friction) {
-    if (!t.has(frictionKey)) t.fail(typeKey, "'friction' needs the Coulomb coefficient '" + frictionKey + "'");
-    bc.friction = Real(t.inRange(frictionKey, 0, 0, 10));
-  } else if (t.has(frictionKey)) {
-    t.inRange(frictionKey, 0, 0, 10); // validated but unused by this boundary type
-  }
-  return bc;
-}
 
 void readSimulation(const ConfigTable& root, SceneSetup& s) {
   const ConfigTable* sim = root.table("simulation");
@@ -85,14 +70,19 @@ void readDomain(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   s.settings.origin = dom ? dom->vec3("origin", lo) : lo;
   s.settings.domain.min = lo - s.settings.origin;
   s.settings.domain.max = hi - s.settings.origin;
-  if (dom) s.settings.domain.walls = readBoundary(*dom, "walls", "wall_friction", "slip", true);
+  if (dom) {
+    // `walls` for all six faces, each face overridable: x_max = "open", z_min = { law = ... }.
+    const auto walls = readContactLaw(*dom, "walls", "slip", "wall_", true);
+    for (size_t f = 0; f < 6; ++f)
+      s.settings.faces[f] = dom->has(faceNames()[f]) ? readContactLaw(*dom, faceNames()[f], "", "wall_", true) : walls;
+  }
 }
 
 void readTerrain(const ConfigTable& root, SceneSetup& s) {
   const ConfigTable* ter = root.table("terrain");
   if (!ter) return;
   s.settings.terrain = loadTerrain(*ter, s.settings);
-  s.settings.terrainBoundary = readBoundary(*ter, "boundary", "friction", "friction", false);
+  s.settings.terrainLaw = readContactLaw(*ter, "boundary", "friction", "", false);
 }
 
 /// A DEM terrain: the ground edits of the terrain bodies (releases from a post-event DEM are
@@ -136,11 +126,11 @@ void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const s
   s.notes.push_back(buf);
   if (dem.filledCells > 0)
     s.notes.push_back("terrain: filled " + std::to_string(dem.filledCells) + " no-data cells of " + dem.raw->sourcePath);
-  std::vector<std::shared_ptr<const TerrainSdf>> parts{ls.sdf};
+  std::vector<std::shared_ptr<const Sdf>> parts{ls.sdf};
   for (const TerrainBody* b : bodies)
     if (auto solid = b->fixedSolid()) parts.push_back(solid);
-  s.settings.terrain = parts.size() == 1 ? parts[0] : std::make_shared<UnionTerrain>(parts);
-  s.settings.terrainBoundary = readBoundary(ter, "boundary", "friction", "friction", false);
+  s.settings.terrain = parts.size() == 1 ? parts[0] : std::make_shared<UnionSdf>(parts);
+  s.settings.terrainLaw = readContactLaw(ter, "boundary", "friction", "", false);
   s.dem = ground;
 }
 
@@ -190,8 +180,9 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   try {
     if (dem) buildDemTerrain(*root.table("terrain"), *dem, list, s, bed);
     else readTerrain(root, s);
-  } catch (const ResourceLimitError& e) {
-    root.table("terrain")->fail("", e.what());
+  } catch (const InputError& e) {
+    if (e.located()) throw;
+    root.table("terrain")->fail("", e.what()); // a limit: about the terrain
   }
 
   SeedSpec spec;
@@ -201,6 +192,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   spec.seed = seed;
   spec.jitter = jitter;
   spec.terrain = s.settings.terrain.get();
+  for (const auto& st : s.settings.structures) spec.solids.push_back(st.geometry.get());
   SeedSpec terrainSpec = spec;
   // A lattice cut by a sloping surface leaves terraces of particles; jitter breaks them up.
   if (!jitterGiven) terrainSpec.jitter = 0.5;
@@ -217,8 +209,9 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       BodyReport rep;
       try {
         rep = seedTerrainBody(*tb, *bedField, terrainSpec, s.settings.origin, worldMin, worldMax, group, seeded);
-      } catch (const ResourceLimitError& e) {
-        t.fail("", e.what());
+      } catch (const InputError& e) {
+        if (e.located()) throw;
+        t.fail("", e.what()); // a limit: about this body
       }
       seeded.push_back(tb);
       rep.label = label;
@@ -231,8 +224,9 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     BodyReport rep;
     try {
       rep = seedShapeBody(t, *shape, spec, dom.min, dom.max, *group);
-    } catch (const ResourceLimitError& e) {
-      t.fail("", e.what());
+    } catch (const InputError& e) {
+      if (e.located()) throw;
+      t.fail("", e.what()); // a limit: about this body
     }
     rep.label = label;
     s.bodies.push_back(rep);
@@ -258,6 +252,7 @@ SceneSetup buildScene(const ConfigTable& root) {
   const uint64_t seed = uint64_t(sim->integer("seed", 0, 0, INT64_MAX));
   const bool jitterGiven = sim->has("jitter");
   const double jitter = sim->inRange("jitter", 0, 0, 1);
+  readStructures(root, s.settings, s.notes);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
   readOutput(root, s);
   root.checkAllUsed();

@@ -131,7 +131,7 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
   const int i0 = int(std::ceil((o.xmin - o.origin.x()) / dx - 1e-9)), i1 = int(std::floor((o.xmax - o.origin.x()) / dx + 1e-9));
   const int j0 = int(std::ceil((o.ymin - o.origin.y()) / dx - 1e-9)), j1 = int(std::floor((o.ymax - o.origin.y()) / dx + 1e-9));
   if (double(i1 - i0 + 1) * double(j1 - j0 + 1) * (2 * o.band + 3) > resourceLimits().maxVoxels)
-    throw ResourceLimitError("the terrain level set would need more than " + std::to_string(resourceLimits().maxVoxels) +
+    throw InputError("", "the terrain level set would need more than " + std::to_string(resourceLimits().maxVoxels) +
                              " voxels: use a larger dx or a smaller domain");
   if (i1 < i0 || j1 < j0) throw std::runtime_error("level set footprint is empty");
   stats.columns = size_t(i1 - i0 + 1) * size_t(j1 - j0 + 1);

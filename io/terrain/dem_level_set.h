@@ -1,8 +1,8 @@
-// DEM -> narrow-band OpenVDB level set (a .vdb file that LevelSetTerrain reads).
+// DEM -> narrow-band OpenVDB level set (a .vdb file that VdbLevelSet reads).
 //
 // Voxel (i, j, k) has its centre at origin + (i, j, k) dx in world coordinates, so a level set
 // built with the simulation's dx and origin has its voxels exactly on the grid nodes and
-// LevelSetTerrain's trilinear sampling returns the voxel values unchanged.
+// VdbLevelSet's trilinear sampling returns the voxel values unchanged.
 #pragma once
 
 #include "engine/types.h"

@@ -42,7 +42,7 @@ std::string crsToWkt(const std::string& userInput) {
   QuietGdal quiet;
   OGRSpatialReference srs;
   if (srs.SetFromUserInput(userInput.c_str()) != OGRERR_NONE)
-    throw DemError("unknown CRS '" + userInput + "'");
+    throw InputError("", "unknown CRS '" + userInput + "'");
   char* wkt = nullptr;
   srs.exportToWkt(&wkt);
   std::string s = wkt ? wkt : "";
@@ -78,32 +78,32 @@ size_t countNodata(const DemRaster& dem) {
 
 DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t* filledCells) {
   if (filledCells) *filledCells = 0;
-  if (!std::filesystem::exists(path)) throw DemError(path + ": file not found");
-  if (!std::filesystem::is_regular_file(path)) throw DemError(path + ": not a regular file");
+  if (!std::filesystem::exists(path)) throw InputError(path, "file not found");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "not a regular file");
   GDALAllRegister();
   QuietGdal quiet;
   DatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!ds) {
     const std::string m = lastGdalMessage();
-    throw DemError(path + ": not a raster GDAL can read" + (m.empty() ? "" : " (" + m + ")"));
+    throw InputError(path, "not a raster GDAL can read" + (m.empty() ? "" : " (" + m + ")"));
   }
-  if (ds->GetRasterCount() < 1) throw DemError(path + ": the file holds no raster band");
+  if (ds->GetRasterCount() < 1) throw InputError(path, "the file holds no raster band");
   double gt[6];
-  if (ds->GetGeoTransform(gt) != CE_None) throw DemError(path + ": the raster has no georeferencing (geotransform)");
+  if (ds->GetGeoTransform(gt) != CE_None) throw InputError(path, "the raster has no georeferencing (geotransform)");
   if (gt[2] != 0 || gt[4] != 0)
-    throw DemError(path + ": rotated or sheared rasters are not supported (geotransform terms " +
+    throw InputError(path, "rotated or sheared rasters are not supported (geotransform terms " +
                    std::to_string(gt[2]) + ", " + std::to_string(gt[4]) + "); warp it north-up first (gdalwarp)");
   const double cx = gt[1], cy = std::fabs(gt[5]);
-  if (!(cx > 0) || !(cy > 0)) throw DemError(path + ": cell size must be positive");
+  if (!(cx > 0) || !(cy > 0)) throw InputError(path, "cell size must be positive");
   if (std::fabs(cx - cy) > 1e-9 * cx)
-    throw DemError(path + ": cells are not square (" + std::to_string(cx) + " x " + std::to_string(cy) +
+    throw InputError(path, "cells are not square (" + std::to_string(cx) + " x " + std::to_string(cy) +
                    " m); resample it first (gdalwarp -tr D D)");
   DemRaster dem;
   dem.sourcePath = path;
   RasterGrid& g = dem.grid;
   g.nx = ds->GetRasterXSize();
   g.ny = ds->GetRasterYSize();
-  if (g.nx < 2 || g.ny < 2) throw DemError(path + ": the raster must be at least 2 x 2 cells");
+  if (g.nx < 2 || g.ny < 2) throw InputError(path, "the raster must be at least 2 x 2 cells");
   g.cellSize = cx;
   g.originX = gt[0];
   g.originY = gt[5] < 0 ? gt[3] : gt[3] + g.ny * cy; // south-up rasters are flipped below
@@ -117,17 +117,17 @@ DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t
     std::string want;
     try {
       want = crsToWkt(options.assignCrs);
-    } catch (const DemError& e) {
-      throw DemError(path + ": " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(path, e.what());
     }
     if (!g.crsWkt.empty() && !sameCrs(g.crsWkt, want))
-      throw DemError(path + ": the file's CRS " + crsName(g.crsWkt) + " differs from the CRS given, " + crsName(want));
+      throw InputError(path, "the file's CRS " + crsName(g.crsWkt) + " differs from the CRS given, " + crsName(want));
     if (g.crsWkt.empty()) g.crsWkt = want;
   }
   GDALRasterBand* band = ds->GetRasterBand(1);
   dem.height.resize(g.size());
   if (band->RasterIO(GF_Read, 0, 0, g.nx, g.ny, dem.height.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
-    throw DemError(path + ": cannot read the raster (" + lastGdalMessage() + ")");
+    throw InputError(path, "cannot read the raster (" + lastGdalMessage() + ")");
   int hasNodata = 0;
   const double nodata = band->GetNoDataValue(&hasNodata);
   const float nd = float(nodata);
@@ -143,7 +143,7 @@ DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t
       size_t first = 0;
       while (!std::isnan(dem.height[first])) ++first;
       const int col = int(first % size_t(g.nx)), row = int(first / size_t(g.nx));
-      throw DemError(path + ": " + std::to_string(holes) + " no-data cells (first at column " + std::to_string(col) +
+      throw InputError(path, std::to_string(holes) + " no-data cells (first at column " + std::to_string(col) +
                      ", row " + std::to_string(row) + ", x " + std::to_string(g.cellCentreX(col)) + ", y " +
                      std::to_string(g.cellCentreY(row)) +
                      "); fill them (scene: fill_nodata = true, talus terrain: --fill-nodata) or crop the DEM");
@@ -158,12 +158,12 @@ size_t fillNodata(DemRaster& dem) {
   const RasterGrid& g = dem.grid;
   const size_t holes = countNodata(dem);
   if (holes == 0) return 0;
-  if (holes == g.size()) throw DemError(dem.sourcePath + ": every cell is no-data");
+  if (holes == g.size()) throw InputError(dem.sourcePath, "every cell is no-data");
   GDALAllRegister();
   QuietGdal quiet;
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
   DatasetPtr ds(mem->Create("", g.nx, g.ny, 2, GDT_Float32, nullptr));
-  if (!ds) throw DemError(dem.sourcePath + ": cannot allocate the fill buffer");
+  if (!ds) throw InputError(dem.sourcePath, "cannot allocate the fill buffer");
   std::vector<float> mask(g.size());
   for (size_t i = 0; i < g.size(); ++i) mask[i] = std::isnan(dem.height[i]) ? 0.f : 1.f;
   std::vector<float> h(dem.height);
@@ -173,13 +173,13 @@ size_t fillNodata(DemRaster& dem) {
   GDALRasterBand* mb = ds->GetRasterBand(2);
   if (hb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None ||
       mb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, mask.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
-    throw DemError(dem.sourcePath + ": cannot fill no-data (" + lastGdalMessage() + ")");
+    throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
   const double searchCells = double(std::max(g.nx, g.ny));
   if (GDALFillNodata(GDALRasterBand::ToHandle(hb), GDALRasterBand::ToHandle(mb), searchCells, 0, 2, nullptr, nullptr,
                      nullptr) != CE_None)
-    throw DemError(dem.sourcePath + ": filling no-data failed (" + lastGdalMessage() + ")");
+    throw InputError(dem.sourcePath, "filling no-data failed (" + lastGdalMessage() + ")");
   if (hb->RasterIO(GF_Read, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
-    throw DemError(dem.sourcePath + ": cannot fill no-data (" + lastGdalMessage() + ")");
+    throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
   for (size_t i = 0; i < g.size(); ++i)
     if (std::isnan(dem.height[i])) dem.height[i] = h[i];
   return holes;
@@ -233,7 +233,7 @@ void writeDemGeoTiff(const DemRaster& dem, const std::string& path) {
   GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
   const char* opts[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", "TILED=YES", nullptr};
   DatasetPtr ds(drv->Create(path.c_str(), g.nx, g.ny, 1, GDT_Float32, const_cast<char**>(opts)));
-  if (!ds) throw DemError(path + ": cannot create the GeoTIFF (" + lastGdalMessage() + ")");
+  if (!ds) throw std::runtime_error(path + ": cannot create the GeoTIFF (" + lastGdalMessage() + ")");
   double gt[6] = {g.originX, g.cellSize, 0, g.originY, 0, -g.cellSize};
   ds->SetGeoTransform(gt);
   if (!g.crsWkt.empty()) ds->SetProjection(g.crsWkt.c_str());
@@ -243,9 +243,9 @@ void writeDemGeoTiff(const DemRaster& dem, const std::string& path) {
   for (float& v : h)
     if (std::isnan(v)) v = -9999.f;
   if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
-    throw DemError(path + ": cannot write the GeoTIFF (" + lastGdalMessage() + ")");
+    throw std::runtime_error(path + ": cannot write the GeoTIFF (" + lastGdalMessage() + ")");
   ds.reset();
-  if (CPLGetLastErrorType() >= CE_Failure) throw DemError(path + ": " + lastGdalMessage());
+  if (CPLGetLastErrorType() >= CE_Failure) throw std::runtime_error(path + ": " + lastGdalMessage());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -2,6 +2,8 @@
 // writing GeoTIFFs, and the bilinear height field the terrain level set and terrain bodies use.
 #pragma once
 
+#include "io/common/input_error.h"
+
 #include "io/common/raster_grid.h"
 
 #include <stdexcept>
@@ -10,11 +12,6 @@
 
 namespace talus {
 
-/// Raised for unusable terrain input; the message is one line and names the file.
-class DemError : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
 
 struct DemReadOptions {
   /// Fill no-data cells (see fillNodata) instead of refusing a DEM that has them.
@@ -37,7 +34,7 @@ size_t countNodata(const DemRaster& dem);
 /// Fills every NaN cell by GDAL's inverse-distance interpolation from the valid cells around
 /// it (GDALFillNodata, the algorithm of gdal_fillnodata, with a search radius spanning the
 /// raster and 2 smoothing passes over the filled cells only). Returns the number of cells
-/// filled. Throws DemError when no cell is valid.
+/// filled. Throws InputError when no cell is valid.
 size_t fillNodata(DemRaster& dem);
 
 /// Gaussian smoothing of "radius" R metres: the Gaussian's 1/e^2 radius, i.e. sigma = R/2,
@@ -49,7 +46,7 @@ void smoothDem(DemRaster& dem, double radius);
 /// Writes a single-band float32 GeoTIFF (no-data -9999 where NaN), the CRS included.
 void writeDemGeoTiff(const DemRaster& dem, const std::string& path);
 
-/// CRS given as EPSG code, WKT, PROJ string...  ->  WKT. Throws DemError.
+/// CRS given as EPSG code, WKT, PROJ string...  ->  WKT. Throws InputError.
 std::string crsToWkt(const std::string& userInput);
 /// Same CRS (GDAL's IsSame) when both are non-empty; true when either is unknown.
 bool sameCrs(const std::string& wktA, const std::string& wktB);

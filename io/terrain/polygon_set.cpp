@@ -24,15 +24,15 @@ struct DatasetCloser {
 } // namespace
 
 PolygonSet PolygonSet::read(const std::string& path, const std::string& attribute, const std::string& layerName) {
-  if (!std::filesystem::exists(path)) throw DemError(path + ": file not found");
-  if (!std::filesystem::is_regular_file(path)) throw DemError(path + ": not a regular file");
+  if (!std::filesystem::exists(path)) throw InputError(path, "file not found");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "not a regular file");
   GDALAllRegister();
   QuietGdal quiet;
   std::unique_ptr<GDALDataset, DatasetCloser> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  if (!ds) throw DemError(path + ": not a vector file GDAL/OGR can read (" + std::string(CPLGetLastErrorMsg()) + ")");
+  if (!ds) throw InputError(path, "not a vector file GDAL/OGR can read (" + std::string(CPLGetLastErrorMsg()) + ")");
   OGRLayer* layer = layerName.empty() ? (ds->GetLayerCount() > 0 ? ds->GetLayer(0) : nullptr)
                                       : ds->GetLayerByName(layerName.c_str());
-  if (!layer) throw DemError(path + ": " + (layerName.empty() ? "no layer" : "no layer named '" + layerName + "'"));
+  if (!layer) throw InputError(path, (layerName.empty() ? "no layer" : "no layer named '" + layerName + "'"));
   PolygonSet ps;
   ps.path_ = path;
   if (const OGRSpatialReference* srs = layer->GetSpatialRef()) {
@@ -48,7 +48,7 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
       std::string names;
       for (int i = 0; i < layer->GetLayerDefn()->GetFieldCount(); ++i)
         names += (names.empty() ? "" : ", ") + std::string(layer->GetLayerDefn()->GetFieldDefn(i)->GetNameRef());
-      throw DemError(path + ": no attribute '" + attribute + "' (attributes: " + (names.empty() ? "none" : names) + ")");
+      throw InputError(path, "no attribute '" + attribute + "' (attributes: " + (names.empty() ? "none" : names) + ")");
     }
   }
   layer->ResetReading();
@@ -64,7 +64,7 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
     double v = 0;
     if (field >= 0) {
       if (!feat->IsFieldSetAndNotNull(field))
-        throw DemError(path + ": feature " + std::to_string(feat->GetFID()) + " has no value for '" + attribute + "'");
+        throw InputError(path, "feature " + std::to_string(feat->GetFID()) + " has no value for '" + attribute + "'");
       v = feat->GetFieldAsDouble(field);
     }
     const int fi = int(ps.values_.size());
@@ -80,7 +80,7 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
       }
     }
   }
-  if (ps.edges_.empty()) throw DemError(path + ": no polygon features");
+  if (ps.edges_.empty()) throw InputError(path, "no polygon features");
   ps.index();
   return ps;
 }

@@ -2,6 +2,8 @@
 // outlines of release areas, snow covers, reservoirs and fixed regions, in the DEM's CRS.
 #pragma once
 
+#include "io/common/input_error.h"
+
 #include <string>
 #include <vector>
 
@@ -11,7 +13,7 @@ class PolygonSet {
 public:
   /// Reads every polygon and multipolygon feature of the first layer (or of `layer`). When
   /// `attribute` is given, each feature's value of that numeric field is kept (missing/null is
-  /// an error). Throws DemError naming the file (missing, unreadable, no polygon, no field).
+  /// an error). Throws InputError naming the file (missing, unreadable, no polygon, no field).
   static PolygonSet read(const std::string& path, const std::string& attribute = "", const std::string& layer = "");
   /// An axis-aligned rectangle (for bodies given `bounds` instead of a polygon).
   static PolygonSet rectangle(double xmin, double ymin, double xmax, double ymax);

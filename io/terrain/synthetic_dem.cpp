@@ -293,7 +293,7 @@ DemRaster makeSyntheticDem(const ConfigTable& t) {
   DemRaster dem;
   try {
     dem.grid.crsWkt = crsToWkt(t.string("crs", "EPSG:2056"));
-  } catch (const DemError& e) {
+  } catch (const InputError& e) {
     t.fail("crs", e.what());
   }
   dem.grid.nx = nx, dem.grid.ny = ny, dem.grid.cellSize = cell;

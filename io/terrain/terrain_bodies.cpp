@@ -1,6 +1,6 @@
 #include "io/terrain/terrain_bodies.h"
 
-#include "engine/union_terrain.h"
+#include "engine/sdf_solids.h"
 #include "io/terrain/terrain_loader.h"
 
 #include <algorithm>
@@ -39,7 +39,7 @@ TerrainBody::TerrainBody(const ConfigTable& t, const std::string& kind, const De
     const std::string file = resolveScenePath(t.file(), t.string("polygon"));
     try {
       region_ = PolygonSet::read(file, attr ? t.string("thickness_attribute") : "", t.string("polygon_layer", ""));
-    } catch (const DemError& e) {
+    } catch (const InputError& e) {
       t.fail(attr && std::string(e.what()).find("attribute") != std::string::npos ? "thickness_attribute" : "polygon",
              e.what());
     }
@@ -103,7 +103,7 @@ TerrainBody::TerrainBody(const ConfigTable& t, const std::string& kind, const De
       DemRaster post;
       try {
         post = readDem(file, opt);
-      } catch (const DemError& e) {
+      } catch (const InputError& e) {
         t.fail("dem_after", e.what());
       }
       if (!sameCrs(post.grid.crsWkt, demCrs))
@@ -215,11 +215,9 @@ void TerrainBody::raise(const HeightField& bed, DemRaster& ground) const {
     }
 }
 
-std::shared_ptr<const TerrainSdf> TerrainBody::fixedSolid() const {
+std::shared_ptr<const Sdf> TerrainBody::fixedSolid() const {
   if (!solid_) return nullptr;
-  std::shared_ptr<const Shape> s = solid_;
-  return std::make_shared<FunctionTerrain>([s](const Vec3d& x) { return s->distance(x); },
-                                           "fixed " + t_->string("solid") + " of " + t_->keyPath(""));
+  return std::make_shared<ShapeSdf>(solid_, "fixed " + t_->string("solid") + " of " + t_->keyPath(""));
 }
 
 double TerrainBody::measure(const HeightField& bed, double q, Vec3d& lo, Vec3d& hi) const {

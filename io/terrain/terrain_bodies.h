@@ -11,7 +11,7 @@
 #pragma once
 
 #include "io/config/config_table.h"
-#include "engine/terrain.h"
+#include "engine/sdf.h"
 #include "io/terrain/shape_reader.h"
 #include "io/terrain/dem_raster.h"
 #include "io/terrain/polygon_set.h"
@@ -44,7 +44,7 @@ public:
   /// Fixed layer: adds its thickness to `ground` at the cell centres inside the region.
   void raise(const HeightField& bed, DemRaster& ground) const;
   /// Fixed solid in the local frame, or nullptr.
-  std::shared_ptr<const TerrainSdf> fixedSolid() const;
+  std::shared_ptr<const Sdf> fixedSolid() const;
 
   /// The body's vertical extent [zb, zt] at world (x, y) on `bed`; false when (x, y) is not part
   /// of it (outside the region or a mask, or zero thickness).

@@ -1,6 +1,6 @@
 #include "io/terrain/terrain_loader.h"
 
-#include "io/terrain/level_set_terrain.h"
+#include "io/terrain/vdb_level_set.h"
 #include "io/terrain/dem_raster.h"
 #include "io/terrain/synthetic_dem.h"
 
@@ -22,7 +22,7 @@ std::string resolveScenePath(const std::string& sceneFile, const std::string& pa
 
 bool isDemTerrain(const ConfigTable& t) { return t.has("dem") || t.has("synthetic"); }
 
-std::shared_ptr<const TerrainSdf> loadTerrain(const ConfigTable& t, const SimulationSettings& s) {
+std::shared_ptr<const Sdf> loadTerrain(const ConfigTable& t, const SimulationSettings& s) {
   const bool hasPlane = t.has("plane"), hasSdf = t.has("sdf"), hasDem = t.has("dem"), hasSyn = t.has("synthetic");
   if (hasPlane + hasSdf + hasDem + hasSyn != 1) t.fail("", "give exactly one of 'plane', 'sdf', 'dem' or 'synthetic'");
   if (hasDem || hasSyn) t.fail(hasDem ? "dem" : "synthetic", "a DEM terrain is built by the scene reader");
@@ -30,13 +30,13 @@ std::shared_ptr<const TerrainSdf> loadTerrain(const ConfigTable& t, const Simula
     const ConfigTable* p = t.table("plane");
     const Vec3d n = p->vec3("normal");
     if (!(n.norm() > 0)) p->fail("normal", "must be a non-zero vector");
-    return std::make_shared<PlaneTerrain>(p->vec3("point") - s.origin, n);
+    return std::make_shared<PlaneSdf>(p->vec3("point") - s.origin, n);
   }
   const std::string file = resolveScenePath(t.file(), t.string("sdf"));
   if (!fs::exists(file)) t.fail("sdf", "file not found: " + file);
   if (!fs::is_regular_file(file)) t.fail("sdf", "not a regular file: " + file);
   try {
-    return std::make_shared<LevelSetTerrain>(file, t.string("grid", ""), s.origin);
+    return std::make_shared<VdbLevelSet>(file, t.string("grid", ""), s.origin);
   } catch (const std::exception& e) {
     t.fail("sdf", file + ": " + e.what());
   }
@@ -54,7 +54,7 @@ DemTerrainInput readDemTerrain(const ConfigTable& t) {
     const std::string file = resolveScenePath(t.file(), t.string("dem"));
     try {
       in.raw = std::make_shared<DemRaster>(readDem(file, opt, &in.filledCells));
-    } catch (const DemError& e) {
+    } catch (const InputError& e) {
       t.fail("dem", e.what());
     }
   } else {
@@ -124,7 +124,7 @@ CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOpt
   if (fs::exists(out.path)) {
     try {
       const auto t0 = Clock::now();
-      out.sdf = std::make_shared<LevelSetTerrain>(out.path, "terrain", o.origin);
+      out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin);
       out.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
       out.reused = true;
       return out;
@@ -134,7 +134,7 @@ CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOpt
   }
   out.stats = buildDemLevelSet(HeightField(ground), o, out.path);
   const auto t0 = Clock::now();
-  out.sdf = std::make_shared<LevelSetTerrain>(out.path, "terrain", o.origin);
+  out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin);
   out.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return out;
 }

@@ -14,7 +14,7 @@ namespace talus {
 
 /// `plane = { point = [...], normal = [...] }` or `sdf = "terrain.vdb"` (optionally `grid`).
 /// Relative file paths are resolved against the scene file's directory.
-std::shared_ptr<const TerrainSdf> loadTerrain(const ConfigTable& terrain, const SimulationSettings& settings);
+std::shared_ptr<const Sdf> loadTerrain(const ConfigTable& terrain, const SimulationSettings& settings);
 
 /// `path` relative to the directory of `sceneFile` unless absolute.
 std::string resolveScenePath(const std::string& sceneFile, const std::string& path);
@@ -38,7 +38,7 @@ DemTerrainInput readDemTerrain(const ConfigTable& terrain);
 std::string terrainCacheDir();
 
 struct CachedLevelSet {
-  std::shared_ptr<const TerrainSdf> sdf;
+  std::shared_ptr<const Sdf> sdf;
   std::string path;
   bool reused = false;
   LevelSetBuildStats stats;  ///< zero when reused

@@ -1,7 +1,7 @@
 // libFuzzer target for the scene reader: TOML text -> ConfigTable -> materials, terrain, bodies.
 // Any input must end in a scene or in talus::InputError; anything else (a crash, a sanitizer
 // report, another exception type escaping) is a bug.
-#include "io/config/input_error.h"
+#include "io/common/input_error.h"
 #include "io/common/resource_limits.h"
 #include "io/scene/scene.h"
 

@@ -1,16 +1,33 @@
-#include "engine/terrain.h"
+#include "engine/sdf.h"
 
 #include "engine/block_topology.h"
 
+#include <limits>
 #include <sstream>
 #include <tbb/parallel_for.h>
 
 namespace talus {
 
-PlaneTerrain::PlaneTerrain(const Vec3d& point, const Vec3d& normal)
+Vec3d Sdf::normal(const Vec3d& x, double h) const {
+  Vec3d g;
+  for (int d = 0; d < 3; ++d) {
+    Vec3d e = Vec3d::Zero();
+    e[d] = h;
+    g[d] = distance(x + e) - distance(x - e);
+  }
+  const double len = g.norm();
+  return len > 1e-12 ? Vec3d(g / len) : Vec3d::Zero();
+}
+
+void Sdf::bounds(Vec3d& lo, Vec3d& hi) const {
+  lo = Vec3d::Constant(-std::numeric_limits<double>::infinity());
+  hi = Vec3d::Constant(std::numeric_limits<double>::infinity());
+}
+
+PlaneSdf::PlaneSdf(const Vec3d& point, const Vec3d& normal)
     : point_(point), normal_(normal.normalized()) {}
 
-bool PlaneTerrain::sampleBlock(const BlockCoord& c, double dx, TerrainBlock& out) const {
+bool PlaneSdf::sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const {
   bool any = false;
   for (int i = 0; i < kBlockDim; ++i)
     for (int j = 0; j < kBlockDim; ++j)
@@ -25,7 +42,7 @@ bool PlaneTerrain::sampleBlock(const BlockCoord& c, double dx, TerrainBlock& out
   return any;
 }
 
-std::string PlaneTerrain::describe() const {
+std::string PlaneSdf::describe() const {
   std::ostringstream s;
   s << "plane through (" << point_.transpose() << ") with normal (" << normal_.transpose() << ")";
   return s.str();
@@ -38,7 +55,7 @@ uint64_t blockKey(const BlockCoord& c) {
 }
 } // namespace
 
-void TerrainCache::attach(const BlockTopology& topo, std::vector<const TerrainBlock*>& out) {
+void SdfCache::attach(const BlockTopology& topo, std::vector<const SdfBlock*>& out) {
   const size_t n = topo.size();
   out.assign(n, nullptr);
   std::vector<uint32_t> missing;
@@ -48,9 +65,9 @@ void TerrainCache::attach(const BlockTopology& topo, std::vector<const TerrainBl
     else if (it->second >= 0) out[b] = blocks_[it->second].get();
   }
   if (missing.empty()) return;
-  std::vector<std::unique_ptr<TerrainBlock>> fresh(missing.size());
+  std::vector<std::unique_ptr<SdfBlock>> fresh(missing.size());
   tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
-    auto tb = std::make_unique<TerrainBlock>();
+    auto tb = std::make_unique<SdfBlock>();
     if (sdf_->sampleBlock(topo.coord(missing[i]), dx_, *tb)) fresh[i] = std::move(tb);
   });
   for (size_t i = 0; i < missing.size(); ++i) {

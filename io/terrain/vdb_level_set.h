@@ -1,22 +1,24 @@
-// Terrain from an OpenVDB narrow-band level set (a .vdb file, e.g. written by `talus terrain`).
+// A solid from an OpenVDB narrow-band level set (a .vdb file): terrain written by `talus terrain`,
+// or a structure modelled elsewhere.
 #pragma once
 
-#include "engine/terrain.h"
+#include "engine/sdf.h"
 
 #include <memory>
 #include <string>
 
 namespace talus {
 
-class LevelSetTerrain final : public TerrainSdf {
+class VdbLevelSet final : public Sdf {
 public:
   /// Reads the float grid `gridName` (or the first float grid when empty) from `path`.
   /// `origin` is the world position of the simulation's local frame. Throws std::runtime_error.
-  LevelSetTerrain(const std::string& path, const std::string& gridName, const Vec3d& origin);
-  ~LevelSetTerrain() override;
+  VdbLevelSet(const std::string& path, const std::string& gridName, const Vec3d& origin);
+  ~VdbLevelSet() override;
 
-  bool sampleBlock(const BlockCoord& c, double dx, TerrainBlock& out) const override;
+  bool sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const override;
   double distance(const Vec3d& x) const override;
+  void bounds(Vec3d& lo, Vec3d& hi) const override; ///< active voxels, local frame
   std::string describe() const override;
 
   double voxelSize() const;

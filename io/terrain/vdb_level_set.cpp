@@ -1,4 +1,4 @@
-#include "io/terrain/level_set_terrain.h"
+#include "io/terrain/vdb_level_set.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -6,11 +6,11 @@
 
 namespace talus {
 
-struct LevelSetTerrain::Impl {
+struct VdbLevelSet::Impl {
   openvdb::FloatGrid::Ptr grid;
 };
 
-LevelSetTerrain::LevelSetTerrain(const std::string& path, const std::string& gridName, const Vec3d& origin)
+VdbLevelSet::VdbLevelSet(const std::string& path, const std::string& gridName, const Vec3d& origin)
     : impl_(std::make_unique<Impl>()), origin_(origin), path_(path) {
   openvdb::initialize();
   try {
@@ -37,11 +37,11 @@ LevelSetTerrain::LevelSetTerrain(const std::string& path, const std::string& gri
   }
 }
 
-LevelSetTerrain::~LevelSetTerrain() = default;
+VdbLevelSet::~VdbLevelSet() = default;
 
-double LevelSetTerrain::voxelSize() const { return impl_->grid->voxelSize()[0]; }
+double VdbLevelSet::voxelSize() const { return impl_->grid->voxelSize()[0]; }
 
-bool LevelSetTerrain::sampleBlock(const BlockCoord& c, double dx, TerrainBlock& out) const {
+bool VdbLevelSet::sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const {
   using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
   const auto acc = impl_->grid->getConstAccessor();
   Sampler sampler(acc, impl_->grid->transform());
@@ -73,25 +73,30 @@ bool LevelSetTerrain::sampleBlock(const BlockCoord& c, double dx, TerrainBlock& 
   return any;
 }
 
-double LevelSetTerrain::distance(const Vec3d& x) const {
+double VdbLevelSet::distance(const Vec3d& x) const {
   const Vec3d w = origin_ + x;
   return openvdb::tools::BoxSampler::sample(impl_->grid->tree(),
                                             impl_->grid->transform().worldToIndex(openvdb::Vec3d(w.x(), w.y(), w.z())));
 }
 
-void LevelSetTerrain::worldBounds(Vec3d& lo, Vec3d& hi) const {
+void VdbLevelSet::worldBounds(Vec3d& lo, Vec3d& hi) const {
   const openvdb::CoordBBox bb = impl_->grid->evalActiveVoxelBoundingBox();
   const auto a = impl_->grid->indexToWorld(bb.min()), b = impl_->grid->indexToWorld(bb.max());
   lo = Vec3d(a.x(), a.y(), a.z());
   hi = Vec3d(b.x(), b.y(), b.z());
 }
 
-std::string LevelSetTerrain::metadata(const std::string& key) const {
+void VdbLevelSet::bounds(Vec3d& lo, Vec3d& hi) const {
+  worldBounds(lo, hi);
+  lo -= origin_, hi -= origin_;
+}
+
+std::string VdbLevelSet::metadata(const std::string& key) const {
   auto m = (*impl_->grid)[key];
   return m ? m->str() : std::string();
 }
 
-std::string LevelSetTerrain::describe() const {
+std::string VdbLevelSet::describe() const {
   return "level set '" + impl_->grid->getName() + "' from " + path_ + " (voxel " + std::to_string(voxelSize()) + " m)";
 }
 

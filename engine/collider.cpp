@@ -1,0 +1,126 @@
+#include "engine/collider.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace talus {
+
+void ColliderMotion::pose(double t, Mat3d& R, Vec3d& d) const {
+  const double tau = std::clamp(t - start, 0.0, stop - start); // time spent moving
+  const double w = angularVelocity.norm();
+  R = w > 0 ? Eigen::AngleAxisd(w * tau, angularVelocity / w).toRotationMatrix() : Mat3d::Identity();
+  d = velocity * tau;
+}
+
+Vec3d ColliderMotion::velocityAt(const Vec3d& x, double t) const {
+  if (t < start || t >= stop) return Vec3d::Zero();
+  Mat3d R;
+  Vec3d d;
+  pose(t, R, d);
+  return velocity + angularVelocity.cross(x - (pivot + d));
+}
+
+Collider::Collider(std::string name, std::shared_ptr<const Sdf> sdf, std::shared_ptr<const ContactLaw> law,
+                   ColliderMotion motion, const Vec3d& reference)
+    : name_(std::move(name)), law_(std::move(law)), sdf_(std::move(sdf)), motion_(motion), reference_(reference) {
+  sdf_->bounds(restLo_, restHi_);
+}
+
+Collider Collider::face(std::string name, int axis, bool upper, double at, std::shared_ptr<const ContactLaw> law) {
+  Collider c(std::move(name), std::move(law));
+  c.axis_ = axis, c.upper_ = upper, c.at_ = at;
+  return c;
+}
+
+Vec3d Collider::reference(double t) const {
+  if (axis_ >= 0 || !motion_.moves()) return reference_;
+  Mat3d R;
+  Vec3d d;
+  motion_.pose(t, R, d);
+  return R * (reference_ - motion_.pivot) + motion_.pivot + d;
+}
+
+void Collider::prepare(const BlockTopology& topology, double dx, double t) {
+  time_ = t;
+  if (axis_ >= 0) return;
+  if (motion_.moves()) {
+    motion_.pose(t, R_, d_);
+    return;
+  }
+  if (!cache_) cache_ = std::make_unique<SdfCache>(sdf_, dx);
+  cache_->attach(topology, blocks_);
+}
+
+void Collider::gather(uint32_t b, const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const {
+  out.count = out.held = 0;
+  if (axis_ >= 0) return gatherFace(c, dx, nodes, out);
+  if (motion_.moves()) return gatherMoving(c, dx, nodes, out);
+  const SdfBlock* s = blocks_[b];
+  if (!s) return;
+  for (int n = 0; n < kBlockNodes; ++n) {
+    if (nodes[n][0] <= Real(0) || s->phi[n] > 0.f) continue;
+    const Vec3 nrm(Real(s->normal[n][0]), Real(s->normal[n][1]), Real(s->normal[n][2]));
+    // Deep inside a narrow band the distance is flat and has no normal: the node is held still.
+    if (!(nrm.squaredNorm() > Real(0.25))) {
+      out.node[kBlockNodes - 1 - out.held++] = int16_t(n);
+      continue;
+    }
+    const int i = out.count++;
+    out.node[i] = int16_t(n);
+    out.contact[i].n = nrm;
+  }
+}
+
+void Collider::gatherFace(const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const {
+  // Node index threshold: node i is on or beyond the lower face when i <= at/dx (and the upper
+  // face when i >= at/dx), within rounding.
+  const int limit = upper_ ? int(std::ceil(at_ / dx - 1e-6)) : int(std::floor(at_ / dx + 1e-6));
+  const int o = (axis_ == 0 ? c.x : axis_ == 1 ? c.y : c.z) * kBlockDim;
+  if (upper_ ? o + kBlockDim - 1 < limit : o > limit) return;
+  Vec3 nrm = Vec3::Zero();
+  nrm[axis_] = upper_ ? Real(-1) : Real(1);
+  const int shift = axis_ == 0 ? 2 * kBlockLog2 : axis_ == 1 ? kBlockLog2 : 0;
+  for (int n = 0; n < kBlockNodes; ++n) {
+    const int idx = o + ((n >> shift) & (kBlockDim - 1));
+    if (nodes[n][0] <= Real(0) || (upper_ ? idx < limit : idx > limit)) continue;
+    const int i = out.count++;
+    out.node[i] = int16_t(n);
+    out.contact[i].n = nrm;
+  }
+}
+
+void Collider::gatherMoving(const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const {
+  // Skip blocks away from the moved rest bounds (a node counts when its phi <= 0).
+  const Vec3d blo = Vec3d(c.x, c.y, c.z) * (kBlockDim * dx), bhi = blo + Vec3d::Constant((kBlockDim - 1) * dx);
+  if (restLo_.allFinite() && restHi_.allFinite()) {
+    Vec3d lo = Vec3d::Constant(INFINITY), hi = Vec3d::Constant(-INFINITY);
+    for (int k = 0; k < 8; ++k) {
+      const Vec3d corner((k & 4) ? restHi_.x() : restLo_.x(), (k & 2) ? restHi_.y() : restLo_.y(),
+                         (k & 1) ? restHi_.z() : restLo_.z());
+      const Vec3d p = R_ * (corner - motion_.pivot) + motion_.pivot + d_;
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+    if ((bhi.array() < lo.array()).any() || (blo.array() > hi.array()).any()) return;
+  }
+  for (int n = 0; n < kBlockNodes; ++n) {
+    if (nodes[n][0] <= Real(0)) continue;
+    const Vec3d x = blo + dx * Vec3d(n >> (2 * kBlockLog2), (n >> kBlockLog2) & (kBlockDim - 1), n & (kBlockDim - 1));
+    const Vec3d rest = R_.transpose() * (x - motion_.pivot - d_) + motion_.pivot;
+    if (sdf_->distance(rest) > 0) continue;
+    const Vec3d nrm = R_ * sdf_->normal(rest, 0.25 * dx);
+    const Vec3 vc = motion_.velocityAt(x, time_).cast<Real>();
+    if (!(nrm.squaredNorm() > 0.25)) {
+      const int h = kBlockNodes - 1 - out.held++;
+      out.node[h] = int16_t(n);
+      out.velocity[h] = vc;
+      continue;
+    }
+    const int i = out.count++;
+    out.node[i] = int16_t(n);
+    out.contact[i].n = nrm.cast<Real>();
+    out.velocity[i] = vc;
+  }
+}
+
+} // namespace talus

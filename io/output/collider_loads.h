@@ -1,0 +1,36 @@
+// Loads on colliders in series.csv: for every collider (the terrain, each structure, each
+// closed face of the domain) the force and moment the material exerts on it, from the momentum
+// its contacts removed each step (engine/grid_update.cpp).
+//
+// Per row: the mean force and moment over the row's interval (impulse / time, like discharge, so
+// no step is missed), its magnitude, and the largest single-step force magnitude in the interval
+// (impacts are brief). The run's peak single-step force goes to summary.json.
+#pragma once
+
+#include "io/output/series_columns.h"
+
+namespace talus {
+
+class ColliderLoadColumns final : public SeriesColumns {
+public:
+  void onStart(const Simulation& sim) override;
+  std::vector<std::string> header() const override;
+  void onStep(const Simulation& sim, double dt) override;
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
+  /// {"<collider>": {"peak_force_N": |F|, "time_s": t, "force_N": [Fx, Fy, Fz]}, ...}
+  std::string summaryJson() const;
+
+private:
+  struct Acc {
+    double impulse[6] = {0, 0, 0, 0, 0, 0}; ///< force and moment times time since the last row
+    double intervalMax = 0;                  ///< largest |F| of a step since the last row
+    double peak = 0, peakTime = 0;           ///< largest |F| of a step in the run, and when
+    double peakForce[3] = {0, 0, 0};
+  };
+  std::vector<std::string> names_;
+  std::vector<Acc> acc_;
+};
+
+} // namespace talus

@@ -1,0 +1,82 @@
+#include "io/scene/structure_reader.h"
+
+#include "engine/sdf_solids.h"
+#include "io/scene/contact_law_table.h"
+#include "io/terrain/shape_reader.h"
+#include "io/terrain/terrain_loader.h"
+#include "io/terrain/vdb_level_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace talus {
+
+namespace {
+
+/// Depth of the deepest point inside the solid (its half thickness), sampled on a lattice.
+double halfThickness(const Shape& shape, double dx) {
+  Vec3d lo, hi;
+  shape.bounds(lo, hi);
+  const double h = std::max(0.5 * dx, (hi - lo).maxCoeff() / 64);
+  double deepest = 0;
+  for (double x = lo.x(); x <= hi.x(); x += h)
+    for (double y = lo.y(); y <= hi.y(); y += h)
+      for (double z = lo.z(); z <= hi.z(); z += h) deepest = std::max(deepest, -shape.distance(Vec3d(x, y, z)));
+  return deepest;
+}
+
+std::shared_ptr<const Sdf> readGeometry(const ConfigTable& t, const SimulationSettings& s, std::vector<std::string>& notes,
+                                        const std::string& label) {
+  const std::string kind = t.choice("shape", "", {"box", "cylinder", "sphere", "level_set"});
+  if (kind == "level_set") {
+    const std::string file = resolveScenePath(t.file(), t.string("file"));
+    if (!std::filesystem::is_regular_file(file)) t.fail("file", "file not found: " + file);
+    try {
+      return std::make_shared<VdbLevelSet>(file, t.string("grid", ""), s.origin);
+    } catch (const std::exception& e) {
+      t.fail("file", file + ": " + e.what());
+    }
+  }
+  if (t.has("file")) t.fail("file", "only shape = \"level_set\" reads a file");
+  std::shared_ptr<const Shape> shape = readBodyShape(t, s.origin);
+  // Contact is decided at grid nodes: a wall thinner than about two cells lets material through.
+  if (halfThickness(*shape, s.dx) < s.dx)
+    notes.push_back("structure '" + label + "' is thinner than two grid cells (dx " + std::to_string(s.dx) +
+                    " m): material may pass through it between nodes");
+  return std::make_shared<ShapeSdf>(shape, kind + " '" + label + "'");
+}
+
+} // namespace
+
+void readStructures(const ConfigTable& root, SimulationSettings& s, std::vector<std::string>& notes) {
+  const auto tables = root.tables("structures");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    const ConfigTable& t = *tables[i];
+    StructureSpec spec;
+    spec.name = t.string("name", "structures[" + std::to_string(i) + "]");
+    for (const auto& other : s.structures)
+      if (other.name == spec.name) t.fail("name", "duplicate structure name '" + spec.name + "'");
+    for (const char* face : faceNames())
+      if (spec.name == face || spec.name == "terrain")
+        t.fail("name", "'" + spec.name + "' names a domain face or the terrain; choose another name");
+    spec.geometry = readGeometry(t, s, notes, spec.name);
+    spec.law = readContactLaw(t, "law", "slip", "", false);
+    Vec3d lo, hi;
+    spec.geometry->bounds(lo, hi);
+    const Vec3d centre = lo.allFinite() && hi.allFinite() ? Vec3d(0.5 * (lo + hi)) : Vec3d::Zero();
+    spec.motion.pivot = centre;
+    if (const ConfigTable* m = t.table("motion")) {
+      spec.motion.velocity = m->vec3("velocity", Vec3d::Zero());
+      spec.motion.angularVelocity = m->vec3("angular_velocity", Vec3d::Zero());
+      if (m->has("pivot")) spec.motion.pivot = m->vec3("pivot") - s.origin;
+      spec.motion.start = m->number("start", 0.0);
+      spec.motion.stop = m->number("stop", std::numeric_limits<double>::infinity());
+      if (!(spec.motion.stop > spec.motion.start)) m->fail("stop", "must be later than start");
+    }
+    spec.momentPoint = t.has("moment_point") ? Vec3d(t.vec3("moment_point") - s.origin) : centre;
+    s.structures.push_back(std::move(spec));
+  }
+}
+
+} // namespace talus
