@@ -5,6 +5,7 @@
 // template code (materials/solid_group.h, materials/fluid_group.h) runs the model inline.
 #pragma once
 
+#include "engine/padded_block.h"
 #include "engine/particle_set.h"
 #include "engine/state_archive.h"
 #include "engine/types.h"
@@ -15,11 +16,6 @@
 #include <vector>
 
 namespace talus {
-
-/// Padded block edge: a block's particles reach nodes 0..9 from its origin.
-constexpr int kPad = kBlockDim + 2;
-constexpr int kPadNodes = kPad * kPad * kPad;
-inline constexpr int padIndex(int i, int j, int k) { return (i * kPad + j) * kPad + k; }
 
 /// What G2P needs to know about one block: grid velocities of its padded neighbourhood.
 struct G2PBlock {

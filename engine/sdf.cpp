@@ -8,6 +8,22 @@
 
 namespace talus {
 
+bool Sdf::sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const {
+  bool any = false;
+  for (int i = 0; i < kBlockDim; ++i)
+    for (int j = 0; j < kBlockDim; ++j)
+      for (int k = 0; k < kBlockDim; ++k) {
+        const int n = blockNodeIndex(i, j, k);
+        const Vec3d x((c.x * kBlockDim + i) * dx, (c.y * kBlockDim + j) * dx, (c.z * kBlockDim + k) * dx);
+        const double phi = distance(x);
+        const Vec3d g = normal(x, 0.25 * dx);
+        out.phi[n] = float(phi);
+        for (int d = 0; d < 3; ++d) out.normal[n][d] = float(g[d]);
+        any |= phi <= 0;
+      }
+  return any;
+}
+
 Vec3d Sdf::normal(const Vec3d& x, double h) const {
   Vec3d g;
   for (int d = 0; d < 3; ++d) {
@@ -27,33 +43,12 @@ void Sdf::bounds(Vec3d& lo, Vec3d& hi) const {
 PlaneSdf::PlaneSdf(const Vec3d& point, const Vec3d& normal)
     : point_(point), normal_(normal.normalized()) {}
 
-bool PlaneSdf::sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const {
-  bool any = false;
-  for (int i = 0; i < kBlockDim; ++i)
-    for (int j = 0; j < kBlockDim; ++j)
-      for (int k = 0; k < kBlockDim; ++k) {
-        const int n = blockNodeIndex(i, j, k);
-        const Vec3d x((c.x * kBlockDim + i) * dx, (c.y * kBlockDim + j) * dx, (c.z * kBlockDim + k) * dx);
-        const double phi = distance(x);
-        out.phi[n] = float(phi);
-        for (int d = 0; d < 3; ++d) out.normal[n][d] = float(normal_[d]);
-        any |= phi <= 0;
-      }
-  return any;
-}
 
 std::string PlaneSdf::describe() const {
   std::ostringstream s;
   s << "plane through (" << point_.transpose() << ") with normal (" << normal_.transpose() << ")";
   return s.str();
 }
-
-namespace {
-uint64_t blockKey(const BlockCoord& c) {
-  return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
-         uint64_t(uint32_t(c.z) & 0x1fffff);
-}
-} // namespace
 
 void SdfCache::attach(const BlockTopology& topo, std::vector<const SdfBlock*>& out) {
   const size_t n = topo.size();

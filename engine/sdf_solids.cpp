@@ -33,20 +33,5 @@ std::string UnionSdf::describe() const {
   return s;
 }
 
-bool ShapeSdf::sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const {
-  bool any = false;
-  for (int i = 0; i < kBlockDim; ++i)
-    for (int j = 0; j < kBlockDim; ++j)
-      for (int k = 0; k < kBlockDim; ++k) {
-        const int n = blockNodeIndex(i, j, k);
-        const Vec3d x((c.x * kBlockDim + i) * dx, (c.y * kBlockDim + j) * dx, (c.z * kBlockDim + k) * dx);
-        const double phi = distance(x);
-        const Vec3d g = normal(x, 0.25 * dx);
-        out.phi[n] = float(phi);
-        for (int d = 0; d < 3; ++d) out.normal[n][d] = float(g[d]);
-        any |= phi <= 0;
-      }
-  return any;
-}
 
 } // namespace talus

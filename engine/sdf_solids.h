@@ -24,13 +24,12 @@ private:
   std::vector<std::shared_ptr<const Sdf>> parts_;
 };
 
-/// An analytic solid (engine/shapes.h) as a signed distance. Normals are central differences of
-/// the distance at +-dx/4.
+/// An analytic solid (engine/shapes.h) as a signed distance; blocks are sampled node by node,
+/// normals by central differences of the distance at +-dx/4.
 class ShapeSdf final : public Sdf {
 public:
   ShapeSdf(std::shared_ptr<const Shape> shape, std::string description)
       : shape_(std::move(shape)), description_(std::move(description)) {}
-  bool sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const override;
   double distance(const Vec3d& x) const override { return shape_->distance(x); }
   void bounds(Vec3d& lo, Vec3d& hi) const override { shape_->bounds(lo, hi); }
   std::string describe() const override { return description_; }

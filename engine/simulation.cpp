@@ -194,10 +194,33 @@ size_t Simulation::particleCount() const {
   return n;
 }
 
+std::vector<Simulation::GroupSums> Simulation::groupSums() const {
+  std::vector<GroupSums> out;
+  const Vec3d g = settings_.gravity;
+  for (const auto* grp : groupPtrs_) {
+    const ParticleSet& P = grp->particles;
+    out.push_back(tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, P.size(), 8192), GroupSums{},
+        [&](const tbb::blocked_range<size_t>& r, GroupSums acc) {
+          for (size_t i = r.begin(); i != r.end(); ++i) {
+            const double m = double(P.mass[i]);
+            acc.mass += m;
+            acc.kinetic += 0.5 * m * double(P.v[i].squaredNorm());
+            acc.potential -= m * g.dot(P.x[i].cast<double>());
+          }
+          return acc;
+        },
+        [](GroupSums a, const GroupSums& b) {
+          a.mass += b.mass, a.kinetic += b.kinetic, a.potential += b.potential;
+          return a;
+        }));
+  }
+  return out;
+}
+
 double Simulation::totalMass() const {
   double m = 0;
-  for (const auto* g : groupPtrs_)
-    for (Real mp : g->particles.mass) m += double(mp);
+  for (const GroupSums& s : groupSums()) m += s.mass;
   return m;
 }
 
@@ -238,17 +261,13 @@ Vec3d Simulation::angularMomentum() const {
 
 double Simulation::kineticEnergy() const {
   double e = 0;
-  for (const auto* g : groupPtrs_)
-    for (size_t i = 0; i < g->size(); ++i)
-      e += 0.5 * double(g->particles.mass[i]) * double(g->particles.v[i].squaredNorm());
+  for (const GroupSums& s : groupSums()) e += s.kinetic;
   return e;
 }
 
 double Simulation::potentialEnergy() const {
   double e = 0;
-  for (const auto* g : groupPtrs_)
-    for (size_t i = 0; i < g->size(); ++i)
-      e -= double(g->particles.mass[i]) * settings_.gravity.dot(g->particles.x[i].cast<double>());
+  for (const GroupSums& s : groupSums()) e += s.potential;
   return e;
 }
 

@@ -97,6 +97,13 @@ public:
   const std::vector<std::unique_ptr<Collider>>& colliders() const { return colliders_; }
   const std::vector<ColliderLoad>& colliderLoads() const { return loads_; }
 
+  /// Per material group (in groups() order): mass, kinetic energy and gravitational potential
+  /// energy -m g.x about the local origin, summed in fixed chunks (the same at any thread count).
+  struct GroupSums {
+    double mass = 0, kinetic = 0, potential = 0;
+  };
+  std::vector<GroupSums> groupSums() const;
+
   double initialMass() const { return initialMass_; }
   double totalMass() const;
   /// Mass of particles that left the domain, per material index.
@@ -112,6 +119,7 @@ public:
   double kineticEnergy() const;
   /// Gravitational potential energy -m g.x relative to the local origin.
   double potentialEnergy() const;
+
 
   /// Bytes held by particles (including model state) and by the grid and terrain cache.
   size_t particleBytes() const;

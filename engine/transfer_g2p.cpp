@@ -16,15 +16,9 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
       const uint32_t b = grid.owning[o];
       // Copy the padded neighbourhood once; the per-particle loop then indexes it densely.
       const auto& up = grid.topology.upper(b);
-      for (int d = 0; d < 8; ++d) {
-        const Vec4* src = grid.block(uint32_t(up[d]));
-        const int ox = (d >> 2) * kBlockDim, oy = ((d >> 1) & 1) * kBlockDim, oz = (d & 1) * kBlockDim;
-        const int nx = (d >> 2) ? 2 : kBlockDim, ny = ((d >> 1) & 1) ? 2 : kBlockDim,
-                  nz = (d & 1) ? 2 : kBlockDim;
-        for (int i = 0; i < nx; ++i)
-          for (int j = 0; j < ny; ++j)
-            std::copy_n(src + blockNodeIndex(i, j, 0), nz, buf.data() + padIndex(ox + i, oy + j, oz));
-      }
+      forEachPaddedRow([&](int d, int pad, int node, int n) {
+        std::copy_n(grid.block(uint32_t(up[d])) + node, n, buf.data() + pad);
+      });
       const BlockCoord& c = grid.topology.coord(b);
       G2PBlock blk{buf.data(), {c.x * kBlockDim, c.y * kBlockDim, c.z * kBlockDim}, dt, grid.dx,
                    Real(1) / grid.dx};

@@ -44,18 +44,10 @@ void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePer
 /// Add the padded buffer of block b into b and its 7 upper neighbours.
 void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
   const auto& up = grid.topology.upper(b);
-  for (int d = 0; d < 8; ++d) {
-    Vec4* dst = grid.block(uint32_t(up[d]));
-    const int ox = (d >> 2) * kBlockDim, oy = ((d >> 1) & 1) * kBlockDim, oz = (d & 1) * kBlockDim;
-    const int nx = (d >> 2) ? 2 : kBlockDim, ny = ((d >> 1) & 1) ? 2 : kBlockDim,
-              nz = (d & 1) ? 2 : kBlockDim;
-    for (int i = 0; i < nx; ++i)
-      for (int j = 0; j < ny; ++j) {
-        const Vec4* src = buf + padIndex(ox + i, oy + j, oz);
-        Vec4* out = dst + blockNodeIndex(i, j, 0);
-        for (int k = 0; k < nz; ++k) out[k] += src[k];
-      }
-  }
+  forEachPaddedRow([&](int d, int pad, int node, int n) {
+    Vec4* out = grid.block(uint32_t(up[d])) + node;
+    for (int k = 0; k < n; ++k) out[k] += buf[pad + k];
+  });
 }
 
 } // namespace

@@ -61,6 +61,12 @@ constexpr int kBlockLog2 = 3;              ///< 8 nodes per block edge, the Open
 constexpr int kBlockDim = 1 << kBlockLog2; ///< nodes per block edge
 constexpr int kBlockNodes = kBlockDim * kBlockDim * kBlockDim;
 
+/// A block coordinate packed into 64 bits (21 bits per axis), as a hash-map key.
+inline uint64_t blockKey(const BlockCoord& c) {
+  return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+         uint64_t(uint32_t(c.z) & 0x1fffff);
+}
+
 /// Linear index of node (i, j, k) inside a block, x-major like an OpenVDB leaf.
 inline constexpr int blockNodeIndex(int i, int j, int k) {
   return (i << (2 * kBlockLog2)) | (j << kBlockLog2) | k;

@@ -5,6 +5,7 @@
 // to rest, discharged volumes, front speed against distance).
 #pragma once
 
+#include "io/common/polyline.h"
 #include "io/common/raster_grid.h"
 #include "io/output/time_series.h"
 
@@ -28,30 +29,6 @@ double sample(const DemRaster& r, double x, double y);
 
 /// `src` resampled (bilinearly, as `sample`) at the cell centres of `onto`.
 DemRaster resample(const DemRaster& src, const RasterGrid& onto);
-
-/// A polyline in world xy with the distance along it.
-class Polyline {
-public:
-  Polyline() = default;
-  explicit Polyline(std::vector<Eigen::Vector2d> points);
-  /// "x,y x,y ..." (at least two points), or a vector file GDAL/OGR reads whose first line
-  /// feature (LineString, or the first part of a MultiLineString) is the polyline. Throws
-  /// InputError (file) or std::invalid_argument (text).
-  static Polyline parse(const std::string& spec);
-
-  const std::vector<Eigen::Vector2d>& points() const { return pts_; }
-  double length() const { return cum_.empty() ? 0 : cum_.back(); }
-  /// The point at distance s along the line (clamped to its ends).
-  Eigen::Vector2d at(double s) const;
-  /// Nearest point of the line to p: distance along it and the perpendicular offset (left of
-  /// the direction of travel positive). Points beyond either end project onto the end with
-  /// `beyond` set.
-  double project(const Eigen::Vector2d& p, double* offset = nullptr, bool* beyond = nullptr) const;
-
-private:
-  std::vector<Eigen::Vector2d> pts_;
-  std::vector<double> cum_;
-};
 
 /// Values of every raster sampled every `step` metres along the line (and at its end).
 struct Profile {

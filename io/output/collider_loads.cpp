@@ -7,7 +7,7 @@ namespace talus {
 
 void ColliderLoadColumns::onStart(const Simulation& sim) {
   names_.clear();
-  for (const auto& c : sim.colliders()) names_.push_back(columnSafe(c->name()));
+  for (const auto& c : sim.colliders()) names_.push_back(safeName(c->name()));
   acc_.assign(names_.size(), Acc{});
 }
 

@@ -13,10 +13,9 @@ FrontTracker::FrontTracker(PathSpec spec, double defaultThreshold)
 
 void FrontTracker::onStart(const Simulation& sim) {
   const Vec3d o = sim.settings().origin;
-  local_.clear();
-  cumulative_.assign(1, 0.0);
-  for (const auto& p : spec_.points) local_.push_back(p - o.head<2>());
-  for (size_t k = 1; k < local_.size(); ++k) cumulative_.push_back(cumulative_.back() + (local_[k] - local_[k - 1]).norm());
+  std::vector<Eigen::Vector2d> local;
+  for (const auto& p : spec_.points) local.push_back(p - o.head<2>());
+  path_ = Polyline(std::move(local));
   bin_ = sim.settings().dx;
   lanes_ = 1 + 2 * int(std::ceil(spec_.halfWidth / bin_ - 1e-9));
   previous_ = std::numeric_limits<double>::quiet_NaN();
@@ -32,10 +31,9 @@ double FrontTracker::front(const Simulation& sim) const {
   const int half = lanes_ / 2;
   const double reach = (half + 0.5) * bin_; // lateral extent of the corridor
   std::vector<double> vol(size_t(nbins) * size_t(lanes_), 0.0);
-  Eigen::Vector2d lo = local_[0], hi = local_[0];
-  for (const auto& p : local_) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  Eigen::Vector2d lo = path_.points()[0], hi = lo;
+  for (const auto& p : path_.points()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   lo.array() -= reach, hi.array() += reach;
-  const size_t nseg = local_.size() - 1;
   const float minSpeed2 = float(spec_.minSpeed * spec_.minSpeed);
   for (const MaterialGroup* g : sim.groups()) {
     if (!spec_.materials.empty() &&
@@ -51,19 +49,9 @@ double FrontTracker::front(const Simulation& sim) const {
         const Eigen::Vector2d x(P.x[p][0], P.x[p][1]);
         if (x.x() < lo.x() || x.y() < lo.y() || x.x() > hi.x() || x.y() > hi.y()) continue;
         if (minSpeed2 > 0 && P.v[p].squaredNorm() < minSpeed2) continue;
-        // Nearest point of the polyline: distance along it and signed lateral offset (left > 0).
-        double best = std::numeric_limits<double>::infinity(), s = 0, lateral = 0;
-        for (size_t k = 0; k < nseg; ++k) {
-          const Eigen::Vector2d a = local_[k], d = local_[k + 1] - a;
-          const double len = cumulative_[k + 1] - cumulative_[k];
-          const Eigen::Vector2d u = d / len, r = x - a;
-          const double t = r.dot(u);
-          if ((t < 0 && k == 0) || (t > len && k + 1 == nseg)) continue; // beyond the path's ends
-          const double tc = std::clamp(t, 0.0, len);
-          const double dist = (r - tc * u).norm();
-          if (dist < best) best = dist, s = cumulative_[k] + tc, lateral = u.x() * r.y() - u.y() * r.x();
-        }
-        if (!(best <= reach)) continue;
+        // Nearest point of the path (beyond its ends nothing counts): along it and lateral (left > 0).
+        double s, lateral;
+        if (!(path_.nearestWithin(x, s, lateral) <= reach)) continue;
         const int lane = std::clamp(int(std::floor(lateral / bin_ + 0.5)) + half, 0, lanes_ - 1);
         const double fs = s / bin_ - 0.5;
         const int b0 = int(std::floor(fs));

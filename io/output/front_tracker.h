@@ -10,6 +10,7 @@
 // resting snow cover ahead of an avalanche is not taken for its front.
 #pragma once
 
+#include "io/common/polyline.h"
 #include "io/output/output_settings.h"
 #include "io/output/series_columns.h"
 
@@ -29,13 +30,12 @@ public:
   /// Front position (m along the path from its first point), NaN when no bin reaches the
   /// threshold.
   double front(const Simulation& sim) const;
-  double length() const { return cumulative_.empty() ? 0 : cumulative_.back(); }
+  double length() const { return path_.length(); }
 
 private:
   PathSpec spec_;
   double threshold_;
-  std::vector<Eigen::Vector2d> local_;
-  std::vector<double> cumulative_; ///< distance along the path at each vertex
+  Polyline path_; ///< in the local frame
   double bin_ = 1;
   int lanes_ = 1;
   double previous_ = std::numeric_limits<double>::quiet_NaN();

@@ -1,4 +1,5 @@
 #include "io/output/hazard_maps.h"
+#include "io/common/names.h"
 
 #include "io/common/geotiff_writer.h"
 #include "io/output/map_quicklook.h"
@@ -20,11 +21,6 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
 constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
 
-std::string fileSafe(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.') ? c : '_';
-  return out;
-}
 } // namespace
 
 /// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
@@ -55,39 +51,21 @@ struct HazardMaps::Impl {
   Vec3d origin = Vec3d::Zero();
   double zLo = 0, zHi = 0, dx = 1;
 
-  /// Calls f(cell, weight, particle) for the (up to four) cells particle p splats onto.
-  template <class F> void splat(const ParticleSet& P, F&& f) const {
-    const int w = window.nx, h = window.ny;
-    for (size_t p = 0; p < P.size(); ++p) {
-      const double fx = a * double(P.x[p][0]) + bx, fy = -a * double(P.x[p][1]) + by;
-      const double cf = std::floor(fx), rf = std::floor(fy);
-      if (cf < -1 || rf < -1 || cf >= w || rf >= h) continue;
-      const int c = int(cf), r = int(rf);
-      const double tx = fx - cf, ty = fy - rf;
-      const double wt[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
-      for (int k = 0; k < 4; ++k) {
-        const int cc = c + (k & 1), rr = r + (k >> 1);
-        if (cc >= 0 && rr >= 0 && cc < w && rr < h && wt[k] > 0) f(uint32_t(size_t(rr) * w + cc), wt[k], p);
-      }
-    }
-  }
+  /// Lists the particles of the groups in `use` by the map row their splat starts in, with
+  /// their splats (see accumulate).
+  void binSplats(const Simulation& sim, const std::vector<uint8_t>& use);
+  /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
+  /// then calls fold(cell) for each cell touched and clears its sums.
+  template <class Fold> void sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold);
 
   /// Volume thickness (m) per cell of the groups selected by `use`, into layer 0 and per material.
-  void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out) const {
+  void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out) {
     out.assign(size_t(layers), std::vector<float>(cells, 0.f));
-    const double invArea = 1.0 / (window.cellSize * window.cellSize);
-    const auto& groups = sim.groups();
-    for (size_t g = 0; g < groups.size(); ++g) {
-      if (!use[g]) continue;
-      const double vpm = invArea / groups[g]->density();
-      const int layer = layers > 1 ? int(1 + g) : -1;
-      const ParticleSet& P = groups[g]->particles;
-      splat(P, [&](uint32_t cell, double wt, size_t p) {
-        const float t = float(wt * double(P.mass[p]) * vpm);
-        out[0][cell] += t;
-        if (layer > 0) out[size_t(layer)][cell] += t;
-      });
-    }
+    const float invArea = float(1.0 / (window.cellSize * window.cellSize));
+    binSplats(sim, use);
+    sumBands(sim, use, [&](uint32_t cell) {
+      for (int l = 0; l < layers; ++l) out[size_t(l)][cell] = sums[size_t(l)][kSums * cell] * invArea;
+    });
   }
 
   /// cos(slope) of the terrain SDF under a cell: the ground is found by bisection on the
@@ -245,15 +223,8 @@ void HazardMaps::onStep(const Simulation& sim, double) {
   accumulate(sim);
 }
 
-void HazardMaps::accumulate(const Simulation& sim) {
-  // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
-  // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
-  // cells into the maxima: no two tasks write one cell, and every cell's sum has the same order
-  // whatever the thread count, so maps are bit-identical at any number of threads.
-  Impl& m = *impl_;
-  m.lastTime = sim.time();
-  m.endTime = sim.time();
-  ++accumulations_;
+void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use) {
+  Impl& m = *this;
   const auto& groups = sim.groups();
   const int w = m.window.nx, h = m.window.ny;
   const float a = float(m.a), bx = float(m.bx), by = float(m.by); // local metres are float anyway
@@ -262,6 +233,7 @@ void HazardMaps::accumulate(const Simulation& sim) {
   m.splats.resize(groups.size());
   std::vector<int32_t> row;
   for (size_t g = 0; g < groups.size(); ++g) {
+    if (!use[g]) continue;
     const ParticleSet& P = groups[g]->particles;
     const float invRho = float(1.0 / groups[g]->density());
     auto& splat = m.splats[g];
@@ -312,10 +284,13 @@ void HazardMaps::accumulate(const Simulation& sim) {
         if (row[p] >= 0) order[next[size_t(row[p])]++] = uint32_t(p);
     });
   }
+}
 
-  const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
-  const float minH = float(settings_.minHeight);
-  const size_t n = m.cells;
+template <class Fold>
+void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold) {
+  Impl& m = *this;
+  const auto& groups = sim.groups();
+  const int w = m.window.nx, h = m.window.ny;
   constexpr int kBand = 8;
   const int bands = (h + kBand - 1) / kBand;
   tbb::parallel_for(0, bands, [&](int band) {
@@ -323,6 +298,7 @@ void HazardMaps::accumulate(const Simulation& sim) {
     std::vector<uint32_t> touched;
     uint8_t* mark = m.mark.data();
     for (size_t g = 0; g < groups.size(); ++g) {
+      if (!use[g]) continue;
       float* __restrict all = m.sums[0].data();
       float* __restrict mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
       const Splat* splats = m.splats[g].data();
@@ -352,24 +328,42 @@ void HazardMaps::accumulate(const Simulation& sim) {
         }
       }
     }
-    // Fold this band's columns into the maxima and clear only the cells touched.
+    // Fold this band's cells and clear only the cells touched.
     for (uint32_t cell : touched) {
-      const float cosS = m.cosAt(cell);
-      for (int l = 0; l < m.layers; ++l) {
-        float* s = m.sums[size_t(l)].data() + kSums * cell;
-        if (s[0] > 0) {
-          float* mx = m.maxima[size_t(l)].data();
-          const float hv = s[0] * invArea;
-          mx[MaxHeightVertical * n + cell] = std::max(mx[MaxHeightVertical * n + cell], hv);
-          mx[MaxHeightNormal * n + cell] = std::max(mx[MaxHeightNormal * n + cell], hv * cosS);
-          if (hv >= minH) {
-            mx[MaxSpeed * n + cell] = std::max(mx[MaxSpeed * n + cell], s[2] / s[1]);
-            mx[MaxPressure * n + cell] = std::max(mx[MaxPressure * n + cell], 1e-3f * s[3] / s[0]);
-          }
-        }
-        std::fill(s, s + kSums, 0.f);
-      }
+      fold(cell);
+      for (int l = 0; l < m.layers; ++l) std::fill_n(m.sums[size_t(l)].data() + kSums * cell, kSums, 0.f);
       m.mark[cell] = 0;
+    }
+  });
+}
+
+void HazardMaps::accumulate(const Simulation& sim) {
+  // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
+  // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
+  // cells into the maxima: no two tasks write one cell, and every cell's sum has the same order
+  // whatever the thread count, so maps are bit-identical at any number of threads.
+  Impl& m = *impl_;
+  m.lastTime = sim.time();
+  m.endTime = sim.time();
+  ++accumulations_;
+  const std::vector<uint8_t> all(sim.groups().size(), 1);
+  m.binSplats(sim, all);
+  const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
+  const float minH = float(settings_.minHeight);
+  const size_t n = m.cells;
+  m.sumBands(sim, all, [&](uint32_t cell) {
+    const float cosS = m.cosAt(cell);
+    for (int l = 0; l < m.layers; ++l) {
+      const float* s = m.sums[size_t(l)].data() + kSums * cell;
+      if (!(s[0] > 0)) continue;
+      float* mx = m.maxima[size_t(l)].data();
+      const float hv = s[0] * invArea;
+      mx[MaxHeightVertical * n + cell] = std::max(mx[MaxHeightVertical * n + cell], hv);
+      mx[MaxHeightNormal * n + cell] = std::max(mx[MaxHeightNormal * n + cell], hv * cosS);
+      if (hv >= minH) {
+        mx[MaxSpeed * n + cell] = std::max(mx[MaxSpeed * n + cell], s[2] / s[1]);
+        mx[MaxPressure * n + cell] = std::max(mx[MaxPressure * n + cell], 1e-3f * s[3] / s[0]);
+      }
     }
   });
 }
@@ -407,7 +401,7 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
   std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
   for (int l = 0; l < m.layers; ++l) {
     const bool anyErodible = l == 0 ? !settings_.erodible.empty() : m.erodibleGroup[size_t(l - 1)] != 0;
-    const std::string dir = l == 0 ? "maps" : "maps/" + fileSafe(m.layerMaterial[size_t(l)]);
+    const std::string dir = l == 0 ? "maps" : "maps/" + safeName(m.layerMaterial[size_t(l)]);
     fs::create_directories(fs::path(outDir_) / dir);
     for (int qi = 0; qi < kQuantities; ++qi) {
       const auto q = Quantity(qi);

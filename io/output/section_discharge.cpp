@@ -20,7 +20,7 @@ void SectionDischarge::onStart(const Simulation& sim) {
 
 std::vector<std::string> SectionDischarge::header() const {
   std::vector<std::string> h;
-  for (const auto& m : materials_) h.push_back("discharge_m3_s_" + spec_.name + "_" + columnSafe(m));
+  for (const auto& m : materials_) h.push_back("discharge_m3_s_" + spec_.name + "_" + safeName(m));
   if (materials_.size() > 1) h.push_back("discharge_m3_s_" + spec_.name + "_total");
   return h;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/simulation.h"
+#include "io/common/names.h"
 #include "engine/state_archive.h"
 
 #include <string>
@@ -25,8 +26,5 @@ public:
   virtual void save(StateArchive& a, const std::string& prefix) const {}
   virtual void load(const StateArchive& a, const std::string& prefix) {}
 };
-
-/// Material and section names in column names: anything but [A-Za-z0-9_.-] becomes '_'.
-std::string columnSafe(const std::string& s);
 
 } // namespace talus

@@ -12,16 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 
 namespace talus {
-
-std::string columnSafe(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ? c : '_';
-  return out;
-}
 
 int SeriesTable::column(const std::string& name) const {
   for (size_t i = 0; i < header.size(); ++i)
@@ -37,7 +29,7 @@ class StateColumns final : public SeriesColumns {
 public:
   void onStart(const Simulation& sim) override {
     names_.clear();
-    for (const auto* g : sim.groups()) names_.push_back(columnSafe(g->name()));
+    for (const auto* g : sim.groups()) names_.push_back(safeName(g->name()));
     first_ = true;
   }
   std::vector<std::string> header() const override {
@@ -51,37 +43,13 @@ public:
     return h;
   }
   void sample(const Simulation& sim, double, std::vector<double>& row) override {
-    // One parallel pass per material; deterministic splitting, so the sums do not depend on
-    // the thread count.
-    struct Sums {
-      double kinetic = 0, mass = 0, potential = 0;
-    };
-    const Vec3d g = sim.settings().gravity;
-    std::vector<Sums> sums;
-    for (const auto* grp : sim.groups()) {
-      const ParticleSet& P = grp->particles;
-      sums.push_back(tbb::parallel_deterministic_reduce(
-          tbb::blocked_range<size_t>(0, P.size(), 8192), Sums{},
-          [&](const tbb::blocked_range<size_t>& r, Sums acc) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-              const double m = double(P.mass[i]);
-              acc.kinetic += 0.5 * m * double(P.v[i].squaredNorm());
-              acc.mass += m;
-              acc.potential -= m * g.dot(P.x[i].cast<double>());
-            }
-            return acc;
-          },
-          [](Sums a, const Sums& b) {
-            a.kinetic += b.kinetic, a.mass += b.mass, a.potential += b.potential;
-            return a;
-          }));
-    }
+    const std::vector<Simulation::GroupSums> sums = sim.groupSums();
     double kinetic = 0, potential = 0;
-    for (const Sums& s : sums) row.push_back(s.kinetic), kinetic += s.kinetic, potential += s.potential;
+    for (const auto& s : sums) row.push_back(s.kinetic), kinetic += s.kinetic, potential += s.potential;
     if (names_.size() > 1) row.push_back(kinetic);
     if (first_) potential0_ = potential, first_ = false;
     row.push_back(potential - potential0_);
-    for (const Sums& s : sums) row.push_back(s.mass);
+    for (const auto& s : sums) row.push_back(s.mass);
     row.push_back(sim.totalMassRemoved());
     row.push_back(sim.maxSpeed());
   }

@@ -1,4 +1,5 @@
 #include "io/output/vdb_frame_writer.h"
+#include "io/common/names.h"
 
 #include "io/common/atomic_file.h"
 #include "io/output/h5_frame_writer.h"
@@ -54,12 +55,6 @@ void writeFile(const std::string& path, const openvdb::GridPtrVec& grids, const 
     file.write(grids, meta);
     file.close();
   });
-}
-
-std::string gridSafe(const std::string& s) {
-  std::string out;
-  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return out;
 }
 
 } // namespace
@@ -128,7 +123,7 @@ void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::s
     auto& g = fraction[size_t(m)];
     g->setTransform(xf->copy());
     g->setGridClass(openvdb::GRID_FOG_VOLUME);
-    describe(*g, "fraction_" + gridSafe(sim.groups()[size_t(m)]->name()), "1", sim.time());
+    describe(*g, "fraction_" + safeName(sim.groups()[size_t(m)]->name()), "1", sim.time());
     g->insertMeta("material", openvdb::StringMetadata(sim.groups()[size_t(m)]->name()));
     g->insertMeta("reference_density", openvdb::DoubleMetadata(sim.groups()[size_t(m)]->density()));
     grids.push_back(g);

@@ -1,5 +1,7 @@
 #include "io/scene/output_reader.h"
 
+#include "io/common/names.h"
+
 #include "io/terrain/dem_raster.h"
 
 #include <algorithm>
@@ -55,7 +57,7 @@ std::string readName(const ConfigTable& t, const std::string& fallback, std::vec
   const std::string n = t.string("name", fallback);
   if (n.empty()) t.fail("name", "must not be empty");
   for (char c : n)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+    if (!isSafeNameChar(c))
       t.fail("name", "'" + n + "': use letters, digits, '_', '-' or '.' (it names CSV columns)");
   if (std::find(used.begin(), used.end(), n) != used.end()) t.fail("name", "duplicate name '" + n + "'");
   used.push_back(n);

@@ -52,36 +52,17 @@ Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
 size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
                   MaterialGroup& group, const Mat3d& velocityGradient) {
-  const Mat3 C0 = velocityGradient.cast<Real>();
-  const double dx = spec.dx;
-  const double volume = dx * dx * dx / spec.particlesPerCell;
-  const Real mass = Real(group.density() * volume);
-  int64_t c0[3], c1[3];
-  for (int d = 0; d < 3; ++d) {
-    c0[d] = int64_t(std::floor(lo[d] / dx));
-    c1[d] = int64_t(std::ceil(hi[d] / dx));
-  }
-  ParticleSet& P = group.particles;
-  const size_t before = P.size();
-  const double candidates = double(c1[0] - c0[0]) * double(c1[1] - c0[1]) * double(c1[2] - c0[2]) * spec.particlesPerCell;
+  double candidates = spec.particlesPerCell;
+  for (int d = 0; d < 3; ++d) candidates *= std::ceil(hi[d] / spec.dx) - std::floor(lo[d] / spec.dx);
   if (candidates > spec.maxParticles)
     throw InputError("", "would test " + std::to_string(candidates) + " particle positions, more than max_particles = " +
                              std::to_string(spec.maxParticles) + " (is dx too small?)");
-  for (int64_t i = c0[0]; i < c1[0]; ++i)
-    for (int64_t j = c0[1]; j < c1[1]; ++j)
-      for (int64_t k = c0[2]; k < c1[2]; ++k)
-        for (int s = 0; s < spec.particlesPerCell; ++s) {
-          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
-          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
-          if (insideSolid(spec, x)) continue;
-          P.x.push_back(x.cast<Real>());
-          P.v.push_back(velocity(x).cast<Real>());
-          P.C.push_back(C0);
-          P.tau.push_back(Sym3{});
-          P.mass.push_back(mass);
-        }
-  group.resizeState(P.size());
-  return P.size() - before;
+  // Every column spans the whole box.
+  const ColumnRange whole = [&](double, double, double, double, double& zlo, double& zhi) {
+    zlo = lo.z(), zhi = hi.z();
+    return true;
+  };
+  return seedColumns(lo, hi, whole, inside, velocity, spec, group, velocityGradient);
 }
 
 size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRange,

@@ -1,5 +1,7 @@
 #include "io/terrain/dem_raster.h"
 
+#include "io/common/geotiff_writer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cpl_conv.h>
@@ -227,25 +229,13 @@ void smoothDem(DemRaster& dem, double radius) {
 }
 
 void writeDemGeoTiff(const DemRaster& dem, const std::string& path) {
-  GDALAllRegister();
-  QuietGdal quiet;
-  const RasterGrid& g = dem.grid;
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  const char* opts[] = {"COMPRESS=DEFLATE", "PREDICTOR=3", "TILED=YES", nullptr};
-  DatasetPtr ds(drv->Create(path.c_str(), g.nx, g.ny, 1, GDT_Float32, const_cast<char**>(opts)));
-  if (!ds) throw std::runtime_error(path + ": cannot create the GeoTIFF (" + lastGdalMessage() + ")");
-  double gt[6] = {g.originX, g.cellSize, 0, g.originY, 0, -g.cellSize};
-  ds->SetGeoTransform(gt);
-  if (!g.crsWkt.empty()) ds->SetProjection(g.crsWkt.c_str());
-  GDALRasterBand* band = ds->GetRasterBand(1);
-  band->SetNoDataValue(-9999);
+  GeoTiffBand band;
+  band.description = "elevation_m";
+  band.unit = "m";
   std::vector<float> h(dem.height);
   for (float& v : h)
-    if (std::isnan(v)) v = -9999.f;
-  if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
-    throw std::runtime_error(path + ": cannot write the GeoTIFF (" + lastGdalMessage() + ")");
-  ds.reset();
-  if (CPLGetLastErrorType() >= CE_Failure) throw std::runtime_error(path + ": " + lastGdalMessage());
+    if (std::isnan(v)) v = float(band.nodata);
+  writeGeoTiff(path, dem.grid, h, band);
 }
 
 // ---------------------------------------------------------------------------------------------
