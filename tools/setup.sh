@@ -33,7 +33,12 @@ fi
 
 jobs="$(nproc)"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j "$jobs"
+# The demo builds only what it runs (the talus program); the tests build everything.
+if [ "$mode" = demo ]; then
+  cmake --build "$build" -j "$jobs" --target talus
+else
+  cmake --build "$build" -j "$jobs"
+fi
 
 sanitized_checks() {
   # ASan + UBSan build (clang) of the libraries, the test suite and the libFuzzer target.

@@ -44,7 +44,14 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
     std::fprintf(stderr, "talus: run stopped: %s\n", r.error.c_str());
     return 3;
   }
-  if (!quiet) std::fprintf(stderr, "talus: done in %.1f s, results in %s\n", r.wallSeconds, r.outDir.c_str());
+  if (!quiet) {
+    std::fprintf(stderr, "talus: done in %.1f s, results in %s/\n", r.wallSeconds, r.outDir.c_str());
+    const auto first = filesToOpenFirst(r);
+    if (!first.empty()) std::fprintf(stderr, "talus: open first %s/%s\n", r.outDir.c_str(), first[0].c_str());
+    std::string also;
+    for (size_t i = 1; i < first.size(); ++i) also += (i > 1 ? ", " : "") + first[i];
+    if (!also.empty()) std::fprintf(stderr, "talus: then %s (maps/*.tif beside the PNGs open in GIS)\n", also.c_str());
+  }
   return 0;
 }
 

@@ -1,99 +1,15 @@
-#include "io/output/hazard_maps.h"
-#include "io/common/names.h"
-
-#include "io/common/geotiff_writer.h"
-#include "io/output/map_quicklook.h"
+// HazardMaps' accumulation: splats of particle volume, mass and speed onto map cells, summed
+// in bands of rows (bit-identical at any thread count) and folded into the maxima.
+#include "io/output/hazard_maps_impl.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace talus {
-
-namespace {
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
-constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
-
-} // namespace
-
-/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
-struct Splat {
-  int32_t col;
-  float tx, ty;
-  float q[kSums];
-};
-
-struct HazardMaps::Impl {
-  RasterGrid window; ///< the part of the grid the domain covers (same cells, shifted origin)
-  int c0 = 0, r0 = 0;
-  size_t cells = 0;
-  int layers = 1; ///< 0 = all material, 1 + i = material group i
-  std::vector<std::string> layerMaterial;
-  std::vector<std::vector<float>> maxima;  ///< [layer][q * cells + cell]
-  std::vector<std::vector<float>> sums;    ///< [layer][kSums * cell + k]
-  std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
-  std::vector<uint8_t> erodibleGroup;
-  std::vector<float> cosSlope; ///< NaN until known
-  std::vector<uint8_t> mark; ///< cell has sums this accumulation
-  std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
-  std::vector<std::vector<Splat>> splats;              ///< per group and particle
-  double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
-  double lastTime = -std::numeric_limits<double>::infinity();
-  double endTime = 0;
-  std::shared_ptr<const Sdf> terrain;
-  Vec3d origin = Vec3d::Zero();
-  double zLo = 0, zHi = 0, dx = 1;
-
-  /// Lists the particles of the groups in `use` by the map row their splat starts in, with
-  /// their splats (see accumulate).
-  void binSplats(const Simulation& sim, const std::vector<uint8_t>& use);
-  /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
-  /// then calls fold(cell) for each cell touched and clears its sums.
-  template <class Fold> void sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold);
-
-  /// Volume thickness (m) per cell of the groups selected by `use`, into layer 0 and per material.
-  void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out) {
-    out.assign(size_t(layers), std::vector<float>(cells, 0.f));
-    const float invArea = float(1.0 / (window.cellSize * window.cellSize));
-    binSplats(sim, use);
-    sumBands(sim, use, [&](uint32_t cell) {
-      for (int l = 0; l < layers; ++l) out[size_t(l)][cell] = sums[size_t(l)][kSums * cell] * invArea;
-    });
-  }
-
-  /// cos(slope) of the terrain SDF under a cell: the ground is found by bisection on the
-  /// signed distance along the vertical, the normal by central differences there.
-  float terrainCos(uint32_t cell) const {
-    if (!terrain) return 1.f;
-    const int c = int(cell % uint32_t(window.nx)), r = int(cell / uint32_t(window.nx));
-    const double x = window.cellCentreX(c) - origin.x(), y = window.cellCentreY(r) - origin.y();
-    auto phi = [&](double px, double py, double pz) { return terrain->distance(Vec3d(px, py, pz)); };
-    double lo = zLo, hi = zHi;
-    if (!(phi(x, y, lo) < 0 && phi(x, y, hi) > 0)) return 1.f; // no ground crossing in this column
-    for (int i = 0; i < 48 && hi - lo > 1e-4 * dx; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (phi(x, y, mid) < 0 ? lo : hi) = mid;
-    }
-    const double z = 0.5 * (lo + hi), e = 0.5 * dx;
-    const Vec3d g((phi(x + e, y, z) - phi(x - e, y, z)) / (2 * e), (phi(x, y + e, z) - phi(x, y - e, z)) / (2 * e),
-                  (phi(x, y, z + e) - phi(x, y, z - e)) / (2 * e));
-    const double n = g.norm();
-    return n > 1e-9 ? float(std::abs(g.z()) / n) : 1.f;
-  }
-
-  float cosAt(uint32_t cell) {
-    float& c = cosSlope[cell];
-    if (std::isnan(c)) c = terrainCos(cell);
-    return c;
-  }
-};
 
 HazardMaps::HazardMaps(std::string outDir, RasterGrid grid, std::shared_ptr<const DemRaster> dem, MapSettings settings)
     : impl_(std::make_unique<Impl>()), outDir_(std::move(outDir)), grid_(std::move(grid)), dem_(std::move(dem)),
@@ -114,22 +30,6 @@ RasterGrid HazardMaps::domainGrid(const RunContext& run, double cellSize) {
   g.ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / cellSize - 1e-9)));
   g.crsWkt = run.crsWkt;
   return g;
-}
-
-const char* HazardMaps::stem(Quantity q) {
-  static const char* s[] = {"max_flow_height_vertical", "max_flow_height_slope_normal", "max_speed", "max_pressure",
-                            "deposit_thickness", "erosion_depth", "initial_thickness", "ground_elevation"};
-  return s[q];
-}
-const char* HazardMaps::band(Quantity q) {
-  static const char* s[] = {"max_flow_height_vertical_m", "max_flow_height_slope_normal_m", "max_speed_m_s",
-                            "max_dynamic_pressure_kPa", "final_deposit_thickness_vertical_m",
-                            "erosion_depth_vertical_m", "initial_thickness_vertical_m", "ground_elevation_m"};
-  return s[q];
-}
-const char* HazardMaps::unit(Quantity q) {
-  static const char* s[] = {"m", "m", "m/s", "kPa", "m", "m", "m", "m"};
-  return s[q];
 }
 
 void HazardMaps::save(StateArchive& a, const std::string& prefix) const {
@@ -337,6 +237,16 @@ void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t
   });
 }
 
+void HazardMaps::Impl::thickness(const Simulation& sim, const std::vector<uint8_t>& use,
+                                 std::vector<std::vector<float>>& out) {
+  out.assign(size_t(layers), std::vector<float>(cells, 0.f));
+  const float invArea = float(1.0 / (window.cellSize * window.cellSize));
+  binSplats(sim, use);
+  sumBands(sim, use, [&](uint32_t cell) {
+    for (int l = 0; l < layers; ++l) out[size_t(l)][cell] = sums[size_t(l)][kSums * cell] * invArea;
+  });
+}
+
 void HazardMaps::accumulate(const Simulation& sim) {
   // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
   // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
@@ -366,99 +276,6 @@ void HazardMaps::accumulate(const Simulation& sim) {
       }
     }
   });
-}
-
-void HazardMaps::onFinish(const Simulation& sim, bool completed) {
-  Impl& m = *impl_;
-  m.endTime = sim.time();
-  std::vector<std::vector<float>> finalErodible;
-  if (completed) {
-    m.thickness(sim, std::vector<uint8_t>(sim.groups().size(), 1), m.deposit);
-    if (!settings_.erodible.empty()) {
-      m.thickness(sim, m.erodibleGroup, finalErodible);
-      m.erosion.assign(size_t(m.layers), std::vector<float>(m.cells, 0.f));
-      for (int l = 0; l < m.layers; ++l)
-        for (size_t c = 0; c < m.cells; ++c)
-          m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
-    }
-  }
-
-  namespace fs = std::filesystem;
-  std::vector<float> windowHeights;
-  if (dem_) {
-    windowHeights.resize(m.cells);
-    for (int r = 0; r < m.window.ny; ++r)
-      for (int c = 0; c < m.window.nx; ++c)
-        windowHeights[size_t(r) * m.window.nx + c] = dem_->height[grid_.index(m.c0 + c, m.r0 + r)];
-  }
-  static const char* titles[] = {"Maximum flow height (vertical)", "Maximum flow height (slope-normal)",
-                                 "Maximum speed", "Maximum dynamic pressure", "Final deposit thickness (vertical)",
-                                 "Erosion depth (vertical)", "Initial thickness (vertical)", "Ground elevation"};
-  static const chart::Ramp ramps[] = {chart::Ramp::Viridis, chart::Ramp::Viridis, chart::Ramp::Plasma,
-                                      chart::Ramp::Magma, chart::Ramp::Browns, chart::Ramp::Blues,
-                                      chart::Ramp::Browns, chart::Ramp::Viridis};
-  char span[64];
-  std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
-  for (int l = 0; l < m.layers; ++l) {
-    const bool anyErodible = l == 0 ? !settings_.erodible.empty() : m.erodibleGroup[size_t(l - 1)] != 0;
-    const std::string dir = l == 0 ? "maps" : "maps/" + safeName(m.layerMaterial[size_t(l)]);
-    fs::create_directories(fs::path(outDir_) / dir);
-    for (int qi = 0; qi < kQuantities; ++qi) {
-      const auto q = Quantity(qi);
-      if ((q == Deposit || q == Erosion) && !completed) continue;
-      if (q == Erosion && !anyErodible) continue;
-      if (q == Ground && (l > 0 || !dem_)) continue;
-      const std::string rel = dir + "/" + stem(q);
-      GeoTiffBand b;
-      b.description = band(q);
-      b.unit = unit(q);
-      b.nodata = kNoData;
-      b.metadata = {{"TALUS_QUANTITY", band(q)},
-                    {"TALUS_MATERIAL", l == 0 ? std::string("all") : m.layerMaterial[size_t(l)]},
-                    {"TALUS_TIME_END_S", std::to_string(m.endTime)}};
-      writeGeoTiff((fs::path(outDir_) / (rel + ".tif")).string(), grid_, raster(q, l), b);
-      recordFile(rel + ".tif");
-      if (settings_.quicklook && q != Ground) {
-        std::vector<float> win(m.cells);
-        const std::vector<float> full = raster(q, l);
-        for (int r = 0; r < m.window.ny; ++r)
-          for (int c = 0; c < m.window.nx; ++c)
-            win[size_t(r) * m.window.nx + c] = full[grid_.index(m.c0 + c, m.r0 + r)];
-        QuicklookStyle style;
-        style.title = titles[qi];
-        style.subtitle = (l == 0 ? std::string("all materials") : "material '" + m.layerMaterial[size_t(l)] + "'") +
-                         ", " + span;
-        style.unit = unit(q);
-        style.ramp = ramps[qi];
-        writeMapQuicklook((fs::path(outDir_) / (rel + ".png")).string(), m.window, win, windowHeights, style, kNoData);
-        recordFile(rel + ".png");
-      }
-    }
-  }
-}
-
-std::vector<float> HazardMaps::raster(Quantity q, int layer) const {
-  const Impl& m = *impl_;
-  std::vector<float> out(grid_.size(), kNoData);
-  if (layer < 0 || layer >= m.layers) throw std::out_of_range("HazardMaps::raster: no such layer");
-  const float* src = nullptr;
-  if (q < kMaxima) src = m.maxima[size_t(layer)].data() + size_t(q) * m.cells;
-  else if (q == Deposit && !m.deposit.empty()) src = m.deposit[size_t(layer)].data();
-  else if (q == Erosion && !m.erosion.empty()) src = m.erosion[size_t(layer)].data();
-  else if (q == Initial && !m.start.empty()) src = m.start[size_t(layer)].data();
-  if (q == Ground) {
-    if (dem_)
-      for (size_t g = 0; g < out.size(); ++g)
-        if (std::isfinite(dem_->height[g])) out[g] = dem_->height[g];
-    return out;
-  }
-  for (int r = 0; r < m.window.ny; ++r)
-    for (int c = 0; c < m.window.nx; ++c) {
-      const size_t g = grid_.index(m.c0 + c, m.r0 + r);
-      if (dem_ && !std::isfinite(dem_->height[g])) continue; // no ground there: no data
-      out[g] = src ? src[size_t(r) * m.window.nx + c] : 0.f;
-    }
-  return out;
 }
 
 } // namespace talus

@@ -6,6 +6,7 @@
 #include "io/run/progress_bar.h"
 #include "io/run/run_summary.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,14 @@
 #include <tbb/info.h>
 
 namespace talus {
+
+std::vector<std::string> filesToOpenFirst(const RunResult& r) {
+  std::vector<std::string> out;
+  for (const char* f : {"maps/max_flow_height_vertical.png", "maps/max_speed.png", "maps/max_pressure.png",
+                        "plots/kinetic_energy.png", "series.csv", "summary.json"})
+    if (std::find(r.files.begin(), r.files.end(), f) != r.files.end()) out.push_back(f);
+  return out;
+}
 
 RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   namespace fs = std::filesystem;
@@ -85,6 +94,8 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   res.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   info.wallSeconds = res.wallSeconds;
   info.outputs = outputs.reports();
+  for (const auto& o : info.outputs) res.files.insert(res.files.end(), o.files.begin(), o.files.end());
+  res.files.push_back("summary.json");
   if (res.ok) writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
   writeSummaryJson((fs::path(res.outDir) / "summary.json").string(), sim, info);
   return res;

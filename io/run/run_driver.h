@@ -20,7 +20,12 @@ struct RunResult {
   double wallSeconds = 0;
   bool ok = true;
   std::string error;
+  std::vector<std::string> files; ///< everything the outputs wrote, relative to outDir
 };
+
+/// What a user should look at after a run, most telling first: a hazard map quick-look when
+/// there are maps, else a plot, else summary.json (relative to the output directory).
+std::vector<std::string> filesToOpenFirst(const RunResult& r);
 
 /// Runs a built scene to its end time; the scene's material groups move into the simulation, so
 /// the caller hands the scene over (std::move). Numerical failures are reported in the result

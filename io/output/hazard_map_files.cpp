@@ -1,0 +1,125 @@
+// HazardMaps' files: the final deposit and erosion, then every map as a GeoTIFF on the map grid
+// and a PNG quick-look.
+#include "io/output/hazard_maps_impl.h"
+
+#include "io/common/geotiff_writer.h"
+#include "io/common/names.h"
+#include "io/output/map_quicklook.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace talus {
+
+const char* HazardMaps::stem(Quantity q) {
+  static const char* s[] = {"max_flow_height_vertical", "max_flow_height_slope_normal", "max_speed", "max_pressure",
+                            "deposit_thickness", "erosion_depth", "initial_thickness", "ground_elevation"};
+  return s[q];
+}
+const char* HazardMaps::band(Quantity q) {
+  static const char* s[] = {"max_flow_height_vertical_m", "max_flow_height_slope_normal_m", "max_speed_m_s",
+                            "max_dynamic_pressure_kPa", "final_deposit_thickness_vertical_m",
+                            "erosion_depth_vertical_m", "initial_thickness_vertical_m", "ground_elevation_m"};
+  return s[q];
+}
+const char* HazardMaps::unit(Quantity q) {
+  static const char* s[] = {"m", "m", "m/s", "kPa", "m", "m", "m", "m"};
+  return s[q];
+}
+
+void HazardMaps::onFinish(const Simulation& sim, bool completed) {
+  Impl& m = *impl_;
+  m.endTime = sim.time();
+  std::vector<std::vector<float>> finalErodible;
+  if (completed) {
+    m.thickness(sim, std::vector<uint8_t>(sim.groups().size(), 1), m.deposit);
+    if (!settings_.erodible.empty()) {
+      m.thickness(sim, m.erodibleGroup, finalErodible);
+      m.erosion.assign(size_t(m.layers), std::vector<float>(m.cells, 0.f));
+      for (int l = 0; l < m.layers; ++l)
+        for (size_t c = 0; c < m.cells; ++c)
+          m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
+    }
+  }
+
+  namespace fs = std::filesystem;
+  std::vector<float> windowHeights;
+  if (dem_) {
+    windowHeights.resize(m.cells);
+    for (int r = 0; r < m.window.ny; ++r)
+      for (int c = 0; c < m.window.nx; ++c)
+        windowHeights[size_t(r) * m.window.nx + c] = dem_->height[grid_.index(m.c0 + c, m.r0 + r)];
+  }
+  static const char* titles[] = {"Maximum flow height (vertical)", "Maximum flow height (slope-normal)",
+                                 "Maximum speed", "Maximum dynamic pressure", "Final deposit thickness (vertical)",
+                                 "Erosion depth (vertical)", "Initial thickness (vertical)", "Ground elevation"};
+  static const chart::Ramp ramps[] = {chart::Ramp::Viridis, chart::Ramp::Viridis, chart::Ramp::Plasma,
+                                      chart::Ramp::Magma, chart::Ramp::Browns, chart::Ramp::Blues,
+                                      chart::Ramp::Browns, chart::Ramp::Viridis};
+  char span[64];
+  std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
+  for (int l = 0; l < m.layers; ++l) {
+    const bool anyErodible = l == 0 ? !settings_.erodible.empty() : m.erodibleGroup[size_t(l - 1)] != 0;
+    const std::string dir = l == 0 ? "maps" : "maps/" + safeName(m.layerMaterial[size_t(l)]);
+    fs::create_directories(fs::path(outDir_) / dir);
+    for (int qi = 0; qi < kQuantities; ++qi) {
+      const auto q = Quantity(qi);
+      if ((q == Deposit || q == Erosion) && !completed) continue;
+      if (q == Erosion && !anyErodible) continue;
+      if (q == Ground && (l > 0 || !dem_)) continue;
+      const std::string rel = dir + "/" + stem(q);
+      GeoTiffBand b;
+      b.description = band(q);
+      b.unit = unit(q);
+      b.nodata = kNoData;
+      b.metadata = {{"TALUS_QUANTITY", band(q)},
+                    {"TALUS_MATERIAL", l == 0 ? std::string("all") : m.layerMaterial[size_t(l)]},
+                    {"TALUS_TIME_END_S", std::to_string(m.endTime)}};
+      writeGeoTiff((fs::path(outDir_) / (rel + ".tif")).string(), grid_, raster(q, l), b);
+      recordFile(rel + ".tif");
+      if (settings_.quicklook && q != Ground) {
+        std::vector<float> win(m.cells);
+        const std::vector<float> full = raster(q, l);
+        for (int r = 0; r < m.window.ny; ++r)
+          for (int c = 0; c < m.window.nx; ++c)
+            win[size_t(r) * m.window.nx + c] = full[grid_.index(m.c0 + c, m.r0 + r)];
+        QuicklookStyle style;
+        style.title = titles[qi];
+        style.subtitle = (l == 0 ? std::string("all materials") : "material '" + m.layerMaterial[size_t(l)] + "'") +
+                         ", " + span;
+        style.unit = unit(q);
+        style.ramp = ramps[qi];
+        writeMapQuicklook((fs::path(outDir_) / (rel + ".png")).string(), m.window, win, windowHeights, style, kNoData);
+        recordFile(rel + ".png");
+      }
+    }
+  }
+}
+
+std::vector<float> HazardMaps::raster(Quantity q, int layer) const {
+  const Impl& m = *impl_;
+  std::vector<float> out(grid_.size(), kNoData);
+  if (layer < 0 || layer >= m.layers) throw std::out_of_range("HazardMaps::raster: no such layer");
+  const float* src = nullptr;
+  if (q < kMaxima) src = m.maxima[size_t(layer)].data() + size_t(q) * m.cells;
+  else if (q == Deposit && !m.deposit.empty()) src = m.deposit[size_t(layer)].data();
+  else if (q == Erosion && !m.erosion.empty()) src = m.erosion[size_t(layer)].data();
+  else if (q == Initial && !m.start.empty()) src = m.start[size_t(layer)].data();
+  if (q == Ground) {
+    if (dem_)
+      for (size_t g = 0; g < out.size(); ++g)
+        if (std::isfinite(dem_->height[g])) out[g] = dem_->height[g];
+    return out;
+  }
+  for (int r = 0; r < m.window.ny; ++r)
+    for (int c = 0; c < m.window.nx; ++c) {
+      const size_t g = grid_.index(m.c0 + c, m.r0 + r);
+      if (dem_ && !std::isfinite(dem_->height[g])) continue; // no ground there: no data
+      out[g] = src ? src[size_t(r) * m.window.nx + c] : 0.f;
+    }
+  return out;
+}
+
+} // namespace talus

@@ -1,0 +1,82 @@
+// The state behind HazardMaps (io/output/hazard_maps.h), shared by its accumulation
+// (hazard_maps.cpp) and its files (hazard_map_files.cpp). Private to those two files.
+#pragma once
+
+#include "io/output/hazard_maps.h"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace talus {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
+constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
+
+/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
+struct Splat {
+  int32_t col;
+  float tx, ty;
+  float q[kSums];
+};
+
+struct HazardMaps::Impl {
+  RasterGrid window; ///< the part of the grid the domain covers (same cells, shifted origin)
+  int c0 = 0, r0 = 0;
+  size_t cells = 0;
+  int layers = 1; ///< 0 = all material, 1 + i = material group i
+  std::vector<std::string> layerMaterial;
+  std::vector<std::vector<float>> maxima;  ///< [layer][q * cells + cell]
+  std::vector<std::vector<float>> sums;    ///< [layer][kSums * cell + k]
+  std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
+  std::vector<uint8_t> erodibleGroup;
+  std::vector<float> cosSlope; ///< NaN until known
+  std::vector<uint8_t> mark; ///< cell has sums this accumulation
+  std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
+  std::vector<std::vector<Splat>> splats;              ///< per group and particle
+  double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
+  double lastTime = -std::numeric_limits<double>::infinity();
+  double endTime = 0;
+  std::shared_ptr<const Sdf> terrain;
+  Vec3d origin = Vec3d::Zero();
+  double zLo = 0, zHi = 0, dx = 1;
+
+  /// Lists the particles of the groups in `use` by the map row their splat starts in, with
+  /// their splats (see accumulate).
+  void binSplats(const Simulation& sim, const std::vector<uint8_t>& use);
+  /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
+  /// then calls fold(cell) for each cell touched and clears its sums.
+  template <class Fold> void sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold);
+
+  /// Volume thickness (m) per cell of the groups selected by `use`, into layer 0 and per material.
+  void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out);
+
+  /// cos(slope) of the terrain SDF under a cell: the ground is found by bisection on the
+  /// signed distance along the vertical, the normal by central differences there.
+  float terrainCos(uint32_t cell) const {
+    if (!terrain) return 1.f;
+    const int c = int(cell % uint32_t(window.nx)), r = int(cell / uint32_t(window.nx));
+    const double x = window.cellCentreX(c) - origin.x(), y = window.cellCentreY(r) - origin.y();
+    auto phi = [&](double px, double py, double pz) { return terrain->distance(Vec3d(px, py, pz)); };
+    double lo = zLo, hi = zHi;
+    if (!(phi(x, y, lo) < 0 && phi(x, y, hi) > 0)) return 1.f; // no ground crossing in this column
+    for (int i = 0; i < 48 && hi - lo > 1e-4 * dx; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (phi(x, y, mid) < 0 ? lo : hi) = mid;
+    }
+    const double z = 0.5 * (lo + hi), e = 0.5 * dx;
+    const Vec3d g((phi(x + e, y, z) - phi(x - e, y, z)) / (2 * e), (phi(x, y + e, z) - phi(x, y - e, z)) / (2 * e),
+                  (phi(x, y, z + e) - phi(x, y, z - e)) / (2 * e));
+    const double n = g.norm();
+    return n > 1e-9 ? float(std::abs(g.z()) / n) : 1.f;
+  }
+
+  float cosAt(uint32_t cell) {
+    float& c = cosSlope[cell];
+    if (std::isnan(c)) c = terrainCos(cell);
+    return c;
+  }
+};
+
+} // namespace talus
