@@ -10,15 +10,18 @@ namespace {
 /// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
 /// from the material, N s) and its moment about `ref`.
 void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
-                   const Vec3d& ref, Vec4* nodes, ContactBatch& batch, double* acc) {
+                   const Vec3d& ref, const FlowColumns::BlockLines* lines, Vec4* nodes, ContactBatch& batch,
+                   double* acc) {
   col.gather(b, c, dx, nodes, batch);
   if (batch.count == 0 && batch.held == 0) return;
   const bool moving = col.moves();
+  const bool thickness = lines && col.law().needsThickness();
   for (int i = 0; i < batch.count; ++i) {
     const Vec4& nd = nodes[batch.node[i]];
     ContactNode& cn = batch.contact[i];
     cn.mass = nd[0];
     cn.v = moving ? Vec3(nd.tail<3>() - batch.velocity[i]) : Vec3(nd.tail<3>());
+    if (thickness) FlowColumns::at(*lines, batch.node[i], cn.n, Real(dx), cn.h, cn.rho);
   }
   col.law().apply(batch.contact, batch.count, step);
   Vec3d force = Vec3d::Zero(), moment = Vec3d::Zero();
@@ -43,12 +46,12 @@ void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double 
 } // namespace
 
 void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const std::vector<Collider*>& colliders,
-                          double time, std::vector<ColliderLoad>& loads) {
+                          double time, const FlowColumns* columns, std::vector<ColliderLoad>& loads) {
   const Vec3 dtg = prm.dt * prm.gravity;
   const Real keep = Real(1) / (Real(1) + prm.damping * prm.dt);
   const size_t K = colliders.size(), nBlocks = grid.blockCount();
   const double dx = grid.dx;
-  const ContactStep step{prm.dt};
+  const ContactStep step{prm.dt, prm.gravity};
   std::vector<Vec3d> refs(K);
   for (size_t k = 0; k < K; ++k) refs[k] = colliders[k]->reference(time);
   // Per block and collider: impulse and its moment (6 doubles), summed in block order below.
@@ -69,8 +72,11 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
         node.tail<3>() = (node.tail<3>() / node[0] + dtg) * keep;
       }
       const BlockCoord& c = grid.topology.coord(uint32_t(b));
+      FlowColumns::BlockLines lines{};
+      if (columns) lines = columns->lines(c);
       for (size_t k = 0; k < K; ++k)
-        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], nodes, batch, &perBlock[(b * K + k) * 6]);
+        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr, nodes, batch,
+                      &perBlock[(b * K + k) * 6]);
     }
   });
 

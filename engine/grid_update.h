@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/collider.h"
+#include "engine/flow_thickness.h"
 #include "engine/sparse_grid.h"
 
 #include <vector>
@@ -18,7 +19,8 @@ struct GridUpdateParams {
 /// After this, node records hold (mass, velocity). Colliders act in list order on each node.
 /// loads[k] receives collider k's load of this step; the per-block sums are added in block order,
 /// so loads are bit-identical at any thread count.
+/// `columns` (may be null when no law needs it) gives laws the flow thickness.
 void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& params, const std::vector<Collider*>& colliders,
-                          double time, std::vector<ColliderLoad>& loads);
+                          double time, const FlowColumns* columns, std::vector<ColliderLoad>& loads);
 
 } // namespace talus

@@ -148,6 +148,18 @@ std::vector<double> ConfigTable::numbers(const std::string& key) const {
   return out;
 }
 
+std::vector<std::string> ConfigTable::strings(const std::string& key) const {
+  const ConfigValue* v = find(key);
+  if (!v) missing(key);
+  if (!v->isArray()) fail(key, "expected an array of strings, got a " + v->typeName());
+  std::vector<std::string> out;
+  for (const auto& e : std::get<ConfigValue::Array>(v->data)) {
+    if (!e.isString()) fail(key, "expected an array of strings, found a " + e.typeName());
+    out.push_back(std::get<std::string>(e.data));
+  }
+  return out;
+}
+
 Eigen::Vector3d ConfigTable::vec3(const std::string& key) const {
   const auto n = numbers(key);
   if (n.size() != 3)

@@ -70,6 +70,8 @@ public:
   Eigen::Vector3d vec3(const std::string& key) const;
   Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback) const;
   std::vector<double> numbers(const std::string& key) const;
+  /// An array of strings.
+  std::vector<std::string> strings(const std::string& key) const;
   const ConfigTable* table(const std::string& key) const; ///< nullptr when absent
   std::vector<const ConfigTable*> tables(const std::string& key) const; ///< array of tables
 

@@ -34,6 +34,24 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.maxParticles = std::min(sim->positive("max_particles", 2e9), resourceLimits().maxParticles);
 }
 
+/// `periodic = ["x", "y"]`: those axes wrap around; their extent must be whole 8-node blocks.
+void readPeriodic(const ConfigTable& dom, SceneSetup& s) {
+  for (const std::string& a : dom.strings("periodic")) {
+    if (a != "x" && a != "y" && a != "z") dom.fail("periodic", "'" + a + "' is not an axis (x, y or z)");
+    const int d = a[0] - 'x';
+    const double dx = s.settings.dx, lo = s.settings.domain.min[d] / dx;
+    const double n = (s.settings.domain.max[d] - s.settings.domain.min[d]) / dx;
+    if (std::abs(lo - std::round(lo)) > 1e-6 || std::abs(n - std::round(n)) > 1e-6 || std::lround(n) % kBlockDim != 0)
+      dom.fail("periodic", "a periodic " + a + " axis needs domain.min on a grid node and an extent of a multiple of 8 dx (" +
+                               std::to_string(8 * dx) + " m); the domain spans " + std::to_string(n) + " cells");
+    for (int side = 0; side < 2; ++side)
+      if (dom.has(faceNames()[size_t(2 * d + side)]))
+        dom.fail(faceNames()[size_t(2 * d + side)], "the " + a + " axis is periodic: its faces have no law");
+    s.settings.periodic[size_t(d)] = true;
+    s.settings.faces[size_t(2 * d)] = s.settings.faces[size_t(2 * d + 1)] = nullptr;
+  }
+}
+
 /// `[domain]` may be omitted (or give only walls/origin) for a DEM terrain: the box then spans
 /// the DEM's extent and its elevations, 8 cells below the lowest point and
 /// max(100 m, 20 cells) above the highest.
@@ -75,6 +93,7 @@ void readDomain(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     const auto walls = readContactLaw(*dom, "walls", "slip", "wall_", true);
     for (size_t f = 0; f < 6; ++f)
       s.settings.faces[f] = dom->has(faceNames()[f]) ? readContactLaw(*dom, faceNames()[f], "", "wall_", true) : walls;
+    if (dom->has("periodic")) readPeriodic(*dom, s);
   }
 }
 

@@ -1,0 +1,65 @@
+#include "engine/flow_thickness.h"
+
+#include <cmath>
+
+namespace talus {
+
+namespace {
+/// Node n of a block: its index along `axis` and the line index (the other two, 0..63).
+inline int lineIndex(int n, int axis) {
+  const int i = n >> (2 * kBlockLog2), j = (n >> kBlockLog2) & (kBlockDim - 1), k = n & (kBlockDim - 1);
+  return axis == 0 ? j * kBlockDim + k : axis == 1 ? i * kBlockDim + k : i * kBlockDim + j;
+}
+} // namespace
+
+uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) {
+  BlockCoord k = c;
+  (axis == 0 ? k.x : axis == 1 ? k.y : k.z) = 0;
+  return blockKey(k);
+}
+
+void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
+  for (auto& l : lines_) l.clear();
+  const int C = grid.extraChannels;
+  // Serial in block order: the sums are the same at any thread count.
+  for (uint32_t b = 0; b < grid.blockCount(); ++b) {
+    const BlockCoord& c = grid.topology.coord(b);
+    const Vec4* nodes = grid.block(b);
+    const float* extra = grid.blockExtra(b);
+    Line* L[3] = {nullptr, nullptr, nullptr};
+    for (int n = 0; n < kBlockNodes; ++n) {
+      const float v = extra[size_t(n) * size_t(C) + size_t(volumeChannel)];
+      if (!(v > 0)) continue;
+      for (int a = 0; a < 3; ++a) {
+        if (!L[a]) L[a] = &lines_[a][lineKey(c, a)];
+        L[a]->volume[lineIndex(n, a)] += v;
+        L[a]->mass[lineIndex(n, a)] += float(nodes[n][0]);
+      }
+    }
+  }
+}
+
+FlowColumns::BlockLines FlowColumns::lines(const BlockCoord& c) const {
+  BlockLines out{};
+  for (int a = 0; a < 3; ++a) {
+    auto it = lines_[a].find(lineKey(c, a));
+    out[size_t(a)] = it == lines_[a].end() ? nullptr : &it->second;
+  }
+  return out;
+}
+
+void FlowColumns::at(const BlockLines& L, int node, const Vec3& n, Real dx, Real& h, Real& rho) {
+  int a = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::abs(n[d]) > std::abs(n[a])) a = d;
+  h = 0, rho = 0;
+  const Line* line = L[size_t(a)];
+  if (!line) return;
+  const int i = lineIndex(node, a);
+  const float v = line->volume[i];
+  if (!(v > 0)) return;
+  h = Real(v) / (dx * dx) * std::abs(n[a]);
+  rho = Real(line->mass[i] / v);
+}
+
+} // namespace talus
