@@ -87,6 +87,7 @@ TEST(AvaFrameInput, WolfsgrubenFolderGivesItsDemReleaseEntrainmentAndPath) {
   EXPECT_TRUE(s.output.maps.peakFiles.enabled);
   EXPECT_EQ(s.output.maps.peakFiles.releaseName, "relWog");
   EXPECT_EQ(s.output.maps.peakFiles.simType, "null");
+  ASSERT_EQ(s.ensemble.path.size(), 4u); // run-outs of an ensemble are measured along it
   EXPECT_TRUE(hasNote(s, "entWog.shp", "not used"));
 }
 

@@ -7,6 +7,7 @@
 #include "io/config/toml_reader.h"
 #include "tools/analysis_commands.h"
 #include "tools/benchmark.h"
+#include "tools/ensemble_command.h"
 #include "tools/work_precision.h"
 #include "tools/terrain_command.h"
 
@@ -117,6 +118,8 @@ int main(int argc, char** argv) {
   auto* terrainCmd = addTerrainCommand(app, terrainOpt);
   SynthDemOptions synthOpt;
   auto* synthCmd = addSynthDemCommand(app, synthOpt);
+  EnsembleOptions ensembleOpt;
+  auto* ensembleCmd = addEnsembleCommand(app, ensembleOpt);
   AnalysisOptions analysisOpt;
   const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
 
@@ -129,6 +132,7 @@ int main(int argc, char** argv) {
     if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, 8, 0.4, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
+    if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
     if (*defaults) {
       std::cout << defaultSceneText();

@@ -153,6 +153,10 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
   ConfigTable* out = childTable(root, "output");
   if (!out->has("maps")) out->set("maps", flag(true));
   if (!out->has("peak_files")) out->set("peak_files", flag(true));
+  if (!folder.thalweg.empty()) { // the run-out of an ensemble is measured along AIMEC's path
+    ConfigTable* ens = childTable(root, "ensemble");
+    if (!ens->has("path")) ens->set("path", text(std::filesystem::absolute(folder.thalwegFile).string()));
+  }
   for (const auto& n : folder.notes) notes.push_back(n);
   notes.push_back("avaframe: " + folder.name + ", release scenario " + rel->name + " (" +
                   std::to_string(rel->features.size()) + " feature(s)), " +

@@ -272,6 +272,8 @@ SceneSetup buildScene(const ConfigTable& root) {
   readStructures(root, s.settings, s.notes);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
   readOutput(root, s);
+  s.ensemble = readEnsembleSettings(root.table("ensemble"),
+                                    s.output.paths.empty() ? std::vector<Eigen::Vector2d>{} : s.output.paths[0].points);
   root.checkAllUsed();
   return s;
 }
