@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -40,8 +42,13 @@ Setup setup(const AnalysisOptions& o, double rasterCell, const std::string& demF
     if (!s.hasDem) throw std::invalid_argument("--runout-area needs the DEM (--dem or --ground) for the thalweg's slope");
     Eigen::Vector2d split;
     if (!o.splitPoint.empty()) {
-      const Polyline p = Polyline::parse(o.splitPoint + " " + o.splitPoint);
-      split = p.points().front();
+      char* end = nullptr;
+      split.x() = std::strtod(o.splitPoint.c_str(), &end);
+      if (!end || *end != ',') throw std::invalid_argument("--split-point '" + o.splitPoint + "': expected x,y");
+      const char* y = end + 1;
+      split.y() = std::strtod(y, &end);
+      if (end == y || *end || !split.allFinite())
+        throw std::invalid_argument("--split-point '" + o.splitPoint + "': expected x,y");
     }
     s.start = aimec::runoutAreaStart(s.t, o.runoutAreaAngle, o.splitPoint.empty() ? nullptr : &split);
     if (s.start >= s.t.ns) throw std::invalid_argument("the thalweg never flattens below --runout-area degrees");
@@ -69,6 +76,17 @@ void drawSL(const std::string& png, const aimec::Transform& t, const std::vector
   std::printf("(s, l) map: %s\n", png.c_str());
 }
 
+/// The axis label of a raster: AvaFrame's result type from the file name, else its name.
+std::string valueLabel(const std::string& file) {
+  const std::string stem = std::filesystem::path(file).stem().string();
+  auto ends = [&](const char* t) { return stem.size() > 4 && stem.compare(stem.size() - 4, 4, t) == 0; };
+  if (ends("_ppr")) return "peak pressure (kPa)";
+  if (ends("_pft")) return "peak flow thickness (m)";
+  if (ends("_pfv")) return "peak flow velocity (m/s)";
+  if (ends("_pfd")) return "peak flow depth, vertical (m)";
+  return analysis::defaultLabel(file);
+}
+
 } // namespace
 
 void addAimecOptions(CLI::App* mapStats, CLI::App* compare, AnalysisOptions& o) {
@@ -85,6 +103,7 @@ void addAimecOptions(CLI::App* mapStats, CLI::App* compare, AnalysisOptions& o) 
   mapStats->add_option("--png", o.png, "(s, l) picture of the field (with --aimec)");
   mapStats->add_option("--plot", o.plot, "Peak values along s: cross-section maximum and mean (with --aimec)");
   mapStats->add_option("--out", o.csv, "CSV of s, cross-section maximum and mean (with --aimec)");
+  mapStats->add_option("--title", o.title, "Title of the plot and the picture (with --aimec)");
 }
 
 int runAimecMapStats(const AnalysisOptions& o) {
@@ -112,8 +131,10 @@ int runAimecMapStats(const AnalysisOptions& o) {
   }
   if (!o.plot.empty()) {
     std::vector<double> lim(s.t.ns, ts.front());
-    writeLineChart(o.plot, "Peak values along the path (run-out " + num(p.sRunout) + " m at > " + num(ts.front(), "%g") + ")",
-                   "s along the path (m)", analysis::defaultLabel(o.rasters[0]), s.t.s,
+    writeLineChart(o.plot,
+                   o.title.empty() ? "Peak values along the path (run-out " + num(p.sRunout) + " m above " + num(ts.front(), "%g") + ")"
+                                   : o.title,
+                   "s along the path (m)", valueLabel(o.rasters[0]), s.t.s,
                    {{"cross-section maximum", p.crossMax, false}, {"cross-section mean", p.crossMean, false},
                     {"threshold", lim, false}});
     std::printf("plot: %s\n", o.plot.c_str());
@@ -146,9 +167,9 @@ int runAimecCompare(const AnalysisOptions& o) {
     for (uint8_t k : c.classes) cls.push_back(k == 255 ? NAN : float(k)); // 255: outside the compared part
     QuicklookStyle st;
     st.title = o.title.empty() ? "Simulation against reference along the path" : o.title;
-    st.subtitle = "> " + num(ts.front(), "%g") + ", runout difference " + num(c.runoutDifference, "%+.0f") + " m";
-    st.classes = {{"reference only (FN)", {0.17, 0.45, 0.80}}, {"both (TP)", {0.45, 0.25, 0.55}},
-                  {"simulation only (FP)", {0.85, 0.25, 0.15}}};
+    st.subtitle = "above " + num(ts.front(), "%g") + ", run-out difference " + num(c.runoutDifference, "%+.0f") + " m";
+    st.classes = {{"ref. only (FN)", {0.17, 0.45, 0.80}}, {"both (TP)", {0.45, 0.25, 0.55}},
+                  {"sim. only (FP)", {0.85, 0.25, 0.15}}};
     drawSL(o.png, s.t, cls, st);
   }
   return 0;
