@@ -2,6 +2,7 @@
 
 #include "hazard/ensemble_plan.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -126,6 +127,7 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     std::fprintf(progress, "talus ensemble: %zu killed member(s) resume from their checkpoints\n", rep.resumed);
   const size_t total = jobs.size();
   size_t next = 0, running = 0, ran = 0;
+  std::vector<size_t> resumedNow; // members started with --resume in this call
   double sumWall = 0;
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   auto bar = [&] {
@@ -142,8 +144,10 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     while (next < todo.size() && running < concurrent) {
       const MemberJob& j = *todo[next++];
       MemberJob run = j;
-      if (memberState(j.dir) == MemberState::Partial) run.args = resumeArgs(j);
-      else {
+      if (memberState(j.dir) == MemberState::Partial) {
+        run.args = resumeArgs(j);
+        resumedNow.push_back(j.index);
+      } else {
         std::error_code ec;
         fs::remove_all(j.dir, ec); // a failed or half-written member starts clean
       }
@@ -161,6 +165,12 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     if (std::isfinite(wall)) sumWall += wall;
     if (ok) ++rep.completed;
     else ++rep.failed;
+    if (!ok && std::find(resumedNow.begin(), resumedNow.end(), m) != resumedNow.end() &&
+        memberState(j->dir) == MemberState::Partial) {
+      // Its checkpoint did not take it to the end: the next re-run starts it anew instead.
+      std::error_code ec;
+      fs::remove(fs::path(j->dir) / "checkpoint.h5", ec);
+    }
     if (progress && !tty)
       std::fprintf(progress, "talus ensemble: %s %s%s (%zu/%zu done)\n", memberName(m).c_str(),
                    ok ? "completed" : "failed", ok ? "" : (", exit " + std::to_string(code) + ", see " + j->dir + "/run.log").c_str(),

@@ -97,6 +97,8 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
     folder = readAvaFrameFolder(dir);
   } catch (const InputError& e) {
     av->fail("directory", e.what());
+  } catch (const std::filesystem::filesystem_error& e) { // a path the system refuses (too long, no access)
+    av->fail("directory", e.what());
   }
   const auto names = materialNames(root);
   const AvaFrameAreas* rel = nullptr;

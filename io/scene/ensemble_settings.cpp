@@ -49,7 +49,7 @@ EnsembleSettings readEnsembleSettings(const ConfigTable* t, const std::vector<Ei
     } catch (const InputError& err) {
       if (err.located()) throw;
       t->fail("path", err.what());
-    } catch (const std::invalid_argument& err) {
+    } catch (const std::exception& err) { // a malformed line, or a path the system refuses
       t->fail("path", err.what());
     }
   }
