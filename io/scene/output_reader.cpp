@@ -102,6 +102,10 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   s.loads = out->boolean("loads", s.loads);
   s.waterMaterials = readMaterialList(*out, "water_materials", materialNames);
   readMaps(*out, materialNames, s.maps);
+  s.maps.peakFiles.enabled = out->boolean("peak_files", false);
+  if (out->has("peak_file_format")) s.maps.peakFiles.format = out->choice("peak_file_format", "", {"asc", "tif", "both"});
+  if (s.maps.peakFiles.enabled && !s.maps.enabled)
+    out->fail("peak_files", "AvaFrame peak files are written from the hazard maps: they need maps = true");
 
   std::vector<std::string> used;
   const auto sections = out->tables("sections");

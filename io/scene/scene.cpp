@@ -7,6 +7,7 @@
 #include "io/terrain/terrain_bodies.h"
 #include "io/terrain/terrain_loader.h"
 #include "io/config/toml_reader.h"
+#include "io/scene/avaframe_scene.h"
 #include "io/scene/contact_law_table.h"
 #include "io/scene/model_table.h"
 #include "io/scene/structure_reader.h"
@@ -254,6 +255,22 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
 
 void readOutput(const ConfigTable& root, SceneSetup& s) {
   s.output = readOutputSettings(root.table("output"), s.materialNames);
+  // AvaFrame's simName parts: the release scenario, releases only or with covers, and a hash of
+  // the whole configuration (AvaFrame hashes its configuration too), so runs differing in any
+  // value have different names.
+  PeakFileSettings& pf = s.output.maps.peakFiles;
+  for (const auto& b : s.bodies)
+    if (b.kind == "release") {
+      pf.releaseName = b.label;
+      break;
+    }
+  for (const auto& b : s.bodies)
+    if (b.kind == "layer") pf.simType = "ent";
+  uint64_t h = 1469598103934665603ull; // FNV-1a
+  for (unsigned char c : root.canonicalText()) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  pf.simHash = std::string(hex).substr(0, 10);
 }
 
 } // namespace
@@ -274,6 +291,8 @@ SceneSetup buildScene(const ConfigTable& root) {
   readStructures(root, s.settings, s.notes);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
   readOutput(root, s);
+  s.ensemble = readEnsembleSettings(root.table("ensemble"),
+                                    s.output.paths.empty() ? std::vector<Eigen::Vector2d>{} : s.output.paths[0].points);
   root.checkAllUsed();
   return s;
 }
@@ -292,17 +311,25 @@ RunContext SceneSetup::runContext() const {
   return r;
 }
 
+namespace {
+/// Overrides first, so `--set avaframe.release_thickness=2` reaches the AvaFrame folder's bodies.
+SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) applyOverride(root, o);
+  std::vector<std::string> notes;
+  expandAvaFrame(root, notes);
+  SceneSetup s = buildScene(root);
+  s.notes.insert(s.notes.begin(), notes.begin(), notes.end());
+  return s;
+}
+} // namespace
+
 SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
-  auto root = readTomlFile(path);
-  for (const auto& o : overrides) applyOverride(*root, o);
-  return buildScene(*root);
+  return build(*readTomlFile(path), overrides);
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides) {
-  auto root = readTomlString(text, name);
-  for (const auto& o : overrides) applyOverride(*root, o);
-  return buildScene(*root);
+  return build(*readTomlString(text, name), overrides);
 }
 
 } // namespace talus
