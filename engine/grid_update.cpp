@@ -9,13 +9,45 @@ namespace {
 
 /// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
 /// from the material, N s) and its moment about `ref`.
+/// The contact nodes' velocities under the collider's law, or, where materials with their own
+/// basal law have mass, the mass-weighted mean of every law's result.
+void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, const float* extra, int channels,
+               const Vec4* nodes, ContactBatch& batch, const ContactStep& step) {
+  bool mixed = false;
+  for (int i = 0; i < batch.count && !mixed; ++i)
+    for (const MaterialLaw& m : laws)
+      mixed |= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] > 0.f;
+  if (!mixed) {
+    own.apply(batch.contact, batch.count, step);
+    return;
+  }
+  std::copy(batch.contact, batch.contact + batch.count, batch.original);
+  own.apply(batch.contact, batch.count, step);
+  for (int i = 0; i < batch.count; ++i) {
+    Real rest = Real(1);
+    for (const MaterialLaw& m : laws)
+      rest -= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
+    batch.mixed[i] = std::max(rest, Real(0)) * batch.contact[i].v;
+  }
+  for (const MaterialLaw& m : laws) {
+    std::copy(batch.original, batch.original + batch.count, batch.contact);
+    m.law->apply(batch.contact, batch.count, step);
+    for (int i = 0; i < batch.count; ++i) {
+      const Real f = extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
+      batch.mixed[i] += f * batch.contact[i].v;
+    }
+  }
+  for (int i = 0; i < batch.count; ++i) batch.contact[i].v = batch.mixed[i];
+}
+
 void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
-                   const Vec3d& ref, const FlowColumns::BlockLines* lines, Vec4* nodes, ContactBatch& batch,
-                   double* acc) {
+                   const Vec3d& ref, const FlowColumns::BlockLines* lines, const std::vector<MaterialLaw>& laws,
+                   const float* extra, int channels, Vec4* nodes, ContactBatch& batch, double* acc) {
   col.gather(b, c, dx, nodes, batch);
   if (batch.count == 0 && batch.held == 0) return;
   const bool moving = col.moves();
-  const bool thickness = lines && col.law().needsThickness();
+  // Thickness is measured for every law when any law asks (the grid then has the columns).
+  const bool thickness = lines != nullptr;
   for (int i = 0; i < batch.count; ++i) {
     const Vec4& nd = nodes[batch.node[i]];
     ContactNode& cn = batch.contact[i];
@@ -23,7 +55,8 @@ void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double 
     cn.v = moving ? Vec3(nd.tail<3>() - batch.velocity[i]) : Vec3(nd.tail<3>());
     if (thickness) FlowColumns::at(*lines, batch.node[i], cn.n, Real(dx), cn.h, cn.rho);
   }
-  col.law().apply(batch.contact, batch.count, step);
+  if (laws.empty()) col.law().apply(batch.contact, batch.count, step);
+  else applyLaws(col.law(), laws, extra, channels, nodes, batch, step);
   Vec3d force = Vec3d::Zero(), moment = Vec3d::Zero();
   auto settle = [&](int n, const Vec3& vNew) {
     Vec4& nd = nodes[n];
@@ -52,6 +85,8 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
   const size_t K = colliders.size(), nBlocks = grid.blockCount();
   const double dx = grid.dx;
   const ContactStep step{prm.dt, prm.gravity};
+  static const std::vector<MaterialLaw> kNone;
+  const std::vector<MaterialLaw>& laws = prm.materialLaws ? *prm.materialLaws : kNone;
   std::vector<Vec3d> refs(K);
   for (size_t k = 0; k < K; ++k) refs[k] = colliders[k]->reference(time);
   // Per block and collider: impulse and its moment (6 doubles), summed in block order below.
@@ -75,8 +110,9 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
       FlowColumns::BlockLines lines{};
       if (columns) lines = columns->lines(c);
       for (size_t k = 0; k < K; ++k)
-        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr, nodes, batch,
-                      &perBlock[(b * K + k) * 6]);
+        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr,
+                      laws, laws.empty() ? nullptr : grid.blockExtra(uint32_t(b)),
+                      grid.extraChannels, nodes, batch, &perBlock[(b * K + k) * 6]);
     }
   });
 

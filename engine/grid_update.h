@@ -10,10 +10,20 @@
 
 namespace talus {
 
+/// A material's own basal law: it replaces every collider's law for that material's share of a
+/// node's mass, read from P2G's extra channel `channel` (the material's node mass).
+struct MaterialLaw {
+  int channel = 0;
+  const ContactLaw* law = nullptr;
+};
+
 struct GridUpdateParams {
   Real dt = 0;
   Vec3 gravity = Vec3::Zero();
   Real damping = 0; ///< velocity damping rate (1/s), see SimulationSettings::damping
+  /// Where materials share a contact node, the velocity is the mass-weighted mean of each law's
+  /// result (the collider's law for the materials without their own).
+  std::vector<MaterialLaw> const* materialLaws = nullptr; ///< null or empty: colliders' laws only
 };
 
 /// After this, node records hold (mass, velocity). Colliders act in list order on each node.

@@ -69,12 +69,23 @@ void Simulation::buildColliders() {
   structures(true);
   for (auto& c : colliders_) colliderPtrs_.push_back(c.get());
   loads_.assign(colliders_.size(), ColliderLoad{});
-  // A law that needs the flow thickness makes P2G scatter each particle's volume (channel 0).
+  // P2G's extra channels: each particle's volume (channel 0) when a law needs the flow
+  // thickness, then the node mass of each material with its own basal law.
   for (const auto& c : colliders_) needsThickness_ |= c->law().needsThickness();
-  if (needsThickness_) {
-    grid_.extraChannels = 1;
-    for (const auto* g : groupPtrs_) grid_.extraOf.push_back({{0, float(1.0 / g->density())}});
+  for (const auto* g : groupPtrs_)
+    if (g->basalLaw) needsThickness_ |= g->basalLaw->needsThickness();
+  int channels = needsThickness_ ? 1 : 0;
+  for (const auto* g : groupPtrs_) {
+    std::vector<std::pair<int, float>> to;
+    if (needsThickness_) to.push_back({0, float(1.0 / g->density())});
+    if (g->basalLaw && !colliders_.empty()) {
+      materialLaws_.push_back(MaterialLaw{channels, g->basalLaw.get()});
+      to.push_back({channels++, 1.f});
+    }
+    grid_.extraOf.push_back(std::move(to));
   }
+  grid_.extraChannels = channels;
+  if (!channels) grid_.extraOf.clear();
 }
 
 double Simulation::maxWaveSpeed() const {
@@ -121,6 +132,7 @@ double Simulation::step(double dtCap) {
     const double ramp = 0.5 * (1 - std::cos(M_PI * s));
     prm.gravity = (ramp * settings_.gravity).cast<Real>();
     prm.damping = Real(settings_.damping);
+    prm.materialLaws = &materialLaws_;
     if (periodic_.any()) periodic_.fold(grid_);
     if (needsThickness_) columns_.build(grid_, 0);
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);

@@ -3,6 +3,7 @@
 
 #include "engine/collider.h"
 #include "engine/flow_thickness.h"
+#include "engine/grid_update.h"
 #include "engine/periodic.h"
 #include "engine/contact_laws.h"
 #include "engine/material_group.h"
@@ -148,6 +149,7 @@ private:
   std::vector<Collider*> colliderPtrs_;
   std::vector<ColliderLoad> loads_;
   bool needsThickness_ = false;
+  std::vector<MaterialLaw> materialLaws_; ///< materials with their own basal law
   Periodicity periodic_;
   FlowColumns columns_;
   double time_ = 0;

@@ -159,6 +159,9 @@ void readMaterials(const ConfigTable& root, SceneSetup& s) {
   if (tables.empty()) root.fail("", "no [[materials]] given");
   for (size_t i = 0; i < tables.size(); ++i) {
     auto g = createMaterialGroup(*tables[i], int(i));
+    // `basal = "sticky"` or `basal = { law = "coulomb", friction = 0.3 }`: this material's own law
+    // at every collider (a string takes its parameters from basal_friction, ...).
+    if (tables[i]->has("basal")) g->basalLaw = readContactLaw(*tables[i], "basal", "", "basal_", false);
     for (const auto& n : s.materialNames)
       if (n == g->name()) tables[i]->fail("name", "duplicate material name '" + n + "'");
     s.materialNames.push_back(g->name());
