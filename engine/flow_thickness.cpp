@@ -1,5 +1,6 @@
 #include "engine/flow_thickness.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace talus {
@@ -31,11 +32,43 @@ void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
       const float v = extra[size_t(n) * size_t(C) + size_t(volumeChannel)];
       if (!(v > 0)) continue;
       for (int a = 0; a < 3; ++a) {
-        if (!L[a]) L[a] = &lines_[a][lineKey(c, a)];
+        if (!L[a]) {
+          L[a] = &lines_[a][lineKey(c, a)];
+          L[a]->at = c;
+          (a == 0 ? L[a]->at.x : a == 1 ? L[a]->at.y : L[a]->at.z) = 0;
+        }
         L[a]->volume[lineIndex(n, a)] += v;
         L[a]->mass[lineIndex(n, a)] += float(nodes[n][0]);
       }
     }
+  }
+  for (int a = 0; a < 3; ++a) dilate(a);
+}
+
+void FlowColumns::dilate(int axis) {
+  // In-plane coordinates of a line block: (y, z), (x, z) or (x, y), as lineIndex orders them.
+  auto coord = [axis](BlockCoord& c, int d) -> int32_t& { return d == 0 ? (axis == 0 ? c.y : c.x) : (axis == 2 ? c.y : c.z); };
+  for (auto& [key, line] : lines_[axis]) {
+    const Line* nb[3][3];
+    for (int du = -1; du <= 1; ++du)
+      for (int dv = -1; dv <= 1; ++dv) {
+        BlockCoord c = line.at;
+        coord(c, 0) += du, coord(c, 1) += dv;
+        const auto it = lines_[axis].find(blockKey(c));
+        nb[du + 1][dv + 1] = it == lines_[axis].end() ? nullptr : &it->second;
+      }
+    for (int u = 0; u < kBlockDim; ++u)
+      for (int v = 0; v < kBlockDim; ++v) {
+        float w = 0;
+        for (int du = -1; du <= 1; ++du)
+          for (int dv = -1; dv <= 1; ++dv) {
+            const int U = u + du, V = v + dv;
+            const int bu = U < 0 ? 0 : U >= kBlockDim ? 2 : 1, bv = V < 0 ? 0 : V >= kBlockDim ? 2 : 1;
+            if (const Line* l = nb[bu][bv])
+              w = std::max(w, l->volume[((U + kBlockDim) % kBlockDim) * kBlockDim + (V + kBlockDim) % kBlockDim]);
+          }
+        line.widest[u * kBlockDim + v] = w;
+      }
   }
 }
 
@@ -58,7 +91,7 @@ void FlowColumns::at(const BlockLines& L, int node, const Vec3& n, Real dx, Real
   const int i = lineIndex(node, a);
   const float v = line->volume[i];
   if (!(v > 0)) return;
-  h = Real(v) / (dx * dx) * std::abs(n[a]);
+  h = Real(line->widest[i]) / (dx * dx) * std::abs(n[a]);
   rho = Real(line->mass[i] / v);
 }
 
