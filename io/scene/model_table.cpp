@@ -5,6 +5,7 @@
 #include "materials/drucker_prager.h"
 #include "materials/elastic.h"
 #include "materials/fluid_group.h"
+#include "materials/mu_i.h"
 #include "materials/solid_group.h"
 
 #include <cmath>
@@ -86,6 +87,18 @@ std::unique_ptr<MaterialGroup> buildDruckerPrager(const MaterialReader& r, const
   return std::make_unique<SolidGroup<DruckerPragerModel>>(h.name, h.index, h.density, DruckerPragerModel(e, p));
 }
 
+std::unique_ptr<MaterialGroup> buildMuI(const MaterialReader& r, const GroupHead& h) {
+  MuIModel m;
+  m.elastic = readElasticity(r);
+  m.params.muS = r.positive("mu_s", m.params.muS);
+  m.params.mu2 = r.positive("mu_2", m.params.mu2);
+  if (m.params.mu2 <= m.params.muS) r.table().fail("mu_2", "mu_2 must exceed mu_s (" + std::to_string(m.params.muS) + ")");
+  m.params.i0 = r.positive("i0", m.params.i0);
+  m.params.grainDiameter = r.positive("grain_diameter", m.params.grainDiameter);
+  m.params.grainDensity = r.positive("grain_density", m.params.grainDensity);
+  return std::make_unique<SolidGroup<MuIModel>>(h.name, h.index, h.density, m);
+}
+
 std::unique_ptr<MaterialGroup> buildCamClay(const MaterialReader& r, const GroupHead& h) {
   CamClayModel m;
   m.elastic = readElasticity(r);
@@ -126,6 +139,7 @@ const std::vector<ModelRow>& modelTable() {
   static const std::vector<ModelRow> rows{
       {ElasticModel::kName, buildElastic},
       {DruckerPragerModel::kName, buildDruckerPrager},
+      {MuIModel::kName, buildMuI},
       {CamClayModel::kName, buildCamClay},
       {TaitWaterModel::kName, buildWater},
   };
