@@ -50,6 +50,23 @@ void Collider::prepare(const BlockTopology& topology, double dx, double t) {
   }
   if (!cache_) cache_ = std::make_unique<SdfCache>(sdf_, dx);
   cache_->attach(topology, blocks_);
+  if (!params_) return;
+  // Parameters of the nodes of blocks near the surface, sampled the first time a block is active.
+  const int P = params_->count();
+  paramBlocks_.assign(blocks_.size(), nullptr);
+  for (uint32_t b = 0; b < blocks_.size(); ++b) {
+    if (!blocks_[b]) continue;
+    const BlockCoord& c = topology.coord(b);
+    auto [it, fresh] = paramCache_.try_emplace(blockKey(c));
+    if (fresh) {
+      it->second.resize(size_t(kBlockNodes) * size_t(P));
+      for (int n = 0; n < kBlockNodes; ++n)
+        params_->sample(dx * Vec3d(c.x * kBlockDim + (n >> (2 * kBlockLog2)), c.y * kBlockDim + ((n >> kBlockLog2) & 7),
+                                   c.z * kBlockDim + (n & 7)),
+                        it->second.data() + size_t(n) * size_t(P));
+    }
+    paramBlocks_[b] = it->second.data();
+  }
 }
 
 void Collider::gather(uint32_t b, const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const {
@@ -69,6 +86,7 @@ void Collider::gather(uint32_t b, const BlockCoord& c, double dx, const Vec4* no
     const int i = out.count++;
     out.node[i] = int16_t(n);
     out.contact[i].n = nrm;
+    out.contact[i].params = paramBlocks_.empty() ? nullptr : paramBlocks_[b] + size_t(n) * size_t(params_->count());
   }
 }
 
@@ -87,6 +105,7 @@ void Collider::gatherFace(const BlockCoord& c, double dx, const Vec4* nodes, Con
     const int i = out.count++;
     out.node[i] = int16_t(n);
     out.contact[i].n = nrm;
+    out.contact[i].params = nullptr;
   }
 }
 
@@ -119,6 +138,7 @@ void Collider::gatherMoving(const BlockCoord& c, double dx, const Vec4* nodes, C
     const int i = out.count++;
     out.node[i] = int16_t(n);
     out.contact[i].n = nrm.cast<Real>();
+    out.contact[i].params = nullptr;
     out.velocity[i] = vc;
   }
 }

@@ -7,10 +7,12 @@
 
 #include "engine/block_topology.h"
 #include "engine/contact_law.h"
+#include "engine/parameter_field.h"
 #include "engine/sdf.h"
 
 #include <limits>
 #include <memory>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -73,7 +75,13 @@ public:
   /// The nodes of block b (coordinate c) inside the collider, with normals and velocities.
   void gather(uint32_t b, const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const;
 
-  size_t memoryBytes() const { return cache_ ? cache_->memoryBytes() + blocks_.capacity() * sizeof(void*) : 0; }
+  /// Law parameters that vary in space (a collider at rest only); null: the law's own everywhere.
+  void setParameters(std::shared_ptr<const ParameterField> field) { params_ = std::move(field); }
+
+  size_t memoryBytes() const {
+    return (cache_ ? cache_->memoryBytes() + blocks_.capacity() * sizeof(void*) : 0) +
+           paramCache_.size() * kBlockNodes * (params_ ? size_t(params_->count()) * sizeof(float) : 0);
+  }
 
 private:
   Collider(std::string name, std::shared_ptr<const ContactLaw> law) : name_(std::move(name)), law_(std::move(law)) {}
@@ -92,6 +100,9 @@ private:
   Vec3d reference_ = Vec3d::Zero();
   std::unique_ptr<SdfCache> cache_;       ///< at rest: phi and normals per block, sampled once
   std::vector<const SdfBlock*> blocks_;   ///< at rest: per active block, its cache or null
+  std::shared_ptr<const ParameterField> params_;
+  std::unordered_map<uint64_t, std::vector<float>> paramCache_; ///< per block key: count() per node
+  std::vector<const float*> paramBlocks_;                       ///< per active block, or null
   Vec3d restLo_, restHi_;                 ///< moving: bounds of the rest geometry
   Mat3d R_ = Mat3d::Identity();           ///< moving: pose this step
   Vec3d d_ = Vec3d::Zero();

@@ -45,6 +45,8 @@ public:
   virtual bool needsThickness() const { return false; }
   /// Names of the parameters a region may set per node, in ContactNode::params order.
   virtual std::vector<std::string> parameterNames() const { return {}; }
+  /// The law's own values of those parameters (what a region leaves unchanged).
+  virtual std::vector<double> parameterValues() const { return {}; }
 };
 
 /// A law type as a ContactLaw: one virtual call per block, the per-node loop inlined.
@@ -58,6 +60,7 @@ public:
   }
   bool needsThickness() const override { return Law::kNeedsThickness; }
   std::vector<std::string> parameterNames() const override { return Law::parameterNames(); }
+  std::vector<double> parameterValues() const override { return law_.values(); }
   const Law& law() const { return law_; }
 
 private:

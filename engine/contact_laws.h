@@ -11,6 +11,7 @@ struct StickyLaw {
   static constexpr const char* kName = "sticky";
   static constexpr bool kNeedsThickness = false;
   static std::vector<std::string> parameterNames() { return {}; }
+  std::vector<double> values() const { return {}; }
   void apply(ContactNode& c, const ContactStep&) const { c.v.setZero(); }
 };
 
@@ -19,6 +20,7 @@ struct SlipLaw {
   static constexpr const char* kName = "slip";
   static constexpr bool kNeedsThickness = false;
   static std::vector<std::string> parameterNames() { return {}; }
+  std::vector<double> values() const { return {}; }
   void apply(ContactNode& c, const ContactStep&) const {
     const Real vn = c.v.dot(c.n);
     if (vn < 0) c.v -= vn * c.n;
@@ -32,6 +34,7 @@ struct CoulombLaw {
   static constexpr const char* kName = "coulomb";
   static constexpr bool kNeedsThickness = false;
   static std::vector<std::string> parameterNames() { return {"friction"}; }
+  std::vector<double> values() const { return {double(mu)}; }
   Real mu = 0;
   void apply(ContactNode& c, const ContactStep&) const {
     const Real mu = c.params ? Real(c.params[0]) : this->mu;

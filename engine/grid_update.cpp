@@ -31,6 +31,7 @@ void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, cons
   }
   for (const MaterialLaw& m : laws) {
     std::copy(batch.original, batch.original + batch.count, batch.contact);
+    for (int i = 0; i < batch.count; ++i) batch.contact[i].params = nullptr; // the region's are the collider law's
     m.law->apply(batch.contact, batch.count, step);
     for (int i = 0; i < batch.count; ++i) {
       const Real f = extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];

@@ -22,6 +22,7 @@ struct SamosAtLaw {
   static constexpr const char* kName = "samosat";
   static constexpr bool kNeedsThickness = true;
   static std::vector<std::string> parameterNames() { return {"friction", "min_shear", "rs0", "kappa", "roughness", "b"}; }
+  std::vector<double> values() const { return {double(mu), double(tau0), double(rs0), double(kappa), double(roughness), double(b)}; }
   Real mu = Real(0.155), tau0 = 0, rs0 = Real(0.222), kappa = Real(0.43), roughness = Real(0.05), b = Real(4.13);
 
   /// tau / sigma at speed u for basal normal stress sigma (Pa), density rho and thickness h.

@@ -54,9 +54,11 @@ void Simulation::buildColliders() {
       if (s.motion.moves() == moving)
         colliders_.push_back(std::make_unique<Collider>(s.name, s.geometry, s.law, s.motion, s.momentPoint));
   };
-  if (settings_.terrain)
+  if (settings_.terrain) {
     colliders_.push_back(std::make_unique<Collider>("terrain", settings_.terrain, settings_.terrainLaw, ColliderMotion{},
                                                     Vec3d::Zero()));
+    colliders_.back()->setParameters(settings_.terrainParameters);
+  }
   structures(false);
   for (int f = 0; f < 6; ++f)
     if (settings_.faces[size_t(f)] && !settings_.periodic[size_t(f / 2)]) {

@@ -56,6 +56,8 @@ struct SimulationSettings {
       makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{}), makeContactLaw(SlipLaw{})};
   std::shared_ptr<const Sdf> terrain; ///< optional ground
   std::shared_ptr<const ContactLaw> terrainLaw = makeContactLaw(CoulombLaw{Real(0.3)});
+  /// The terrain law's parameters by region (`[[terrain.regions]]`), or null: its own everywhere.
+  std::shared_ptr<const ParameterField> terrainParameters;
   std::vector<StructureSpec> structures;
   /// Periodic axes (the domain's extent along them a multiple of 8 dx; no faces there).
   std::array<bool, 3> periodic{false, false, false};

@@ -17,6 +17,7 @@ struct VoellmyLaw {
   static constexpr const char* kName = "voellmy";
   static constexpr bool kNeedsThickness = true;
   static std::vector<std::string> parameterNames() { return {"friction", "xi"}; }
+  std::vector<double> values() const { return {double(mu), double(xi)}; }
   Real mu = Real(0.155);  ///< dry friction coefficient (AvaFrame default)
   Real xi = Real(4000);   ///< turbulent friction (m/s2; AvaFrame default)
 

@@ -10,6 +10,7 @@
 #include "io/scene/avaframe_scene.h"
 #include "io/scene/contact_law_table.h"
 #include "io/scene/model_table.h"
+#include "io/scene/region_reader.h"
 #include "io/scene/structure_reader.h"
 
 #include <cmath>
@@ -103,6 +104,7 @@ void readTerrain(const ConfigTable& root, SceneSetup& s) {
   if (!ter) return;
   s.settings.terrain = loadTerrain(*ter, s.settings);
   s.settings.terrainLaw = readContactLaw(*ter, "boundary", "friction", "", false);
+  s.settings.terrainParameters = readTerrainRegions(*ter, *s.settings.terrainLaw, s.settings, "");
 }
 
 /// A DEM terrain: the ground edits of the terrain bodies (releases from a post-event DEM are
@@ -151,6 +153,7 @@ void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const s
     if (auto solid = b->fixedSolid()) parts.push_back(solid);
   s.settings.terrain = parts.size() == 1 ? parts[0] : std::make_shared<UnionSdf>(parts);
   s.settings.terrainLaw = readContactLaw(ter, "boundary", "friction", "", false);
+  s.settings.terrainParameters = readTerrainRegions(ter, *s.settings.terrainLaw, s.settings, dem.raw->grid.crsWkt);
   s.dem = ground;
 }
 
