@@ -128,6 +128,11 @@ analyse_wolfsgruben() {
     echo "# peak pressure (kPa) against ${ref##*/}_ppr.asc (AIMEC's run-out: 1 kPa)"
     "$talus" compare "$d/maps/max_pressure.tif" "${ref}_ppr.asc" --threshold 1 --threshold 10 \
       --path "$path" --half-width 300
+    echo "# AIMEC: run-out and areas along the path (ppr 1 kPa, pft 0.1 m)"
+    "$talus" compare "$d/maps/max_pressure.tif" "${ref}_ppr.asc" --aimec --path "$path" --threshold 1 \
+      --dem "$shared/Inputs/avaWog.asc"
+    "$talus" compare "$d/maps/max_flow_height_slope_normal.tif" "${ref}_pft.asc" --aimec --path "$path" \
+      --threshold 0.1 --dem "$shared/Inputs/avaWog.asc"
   } > "$a/comparison.txt"
 }
 
