@@ -1,5 +1,6 @@
 // The `talus` command line: run scenes, check them, and (later) prepare terrain and benchmarks.
 #include "io/common/input_error.h"
+#include "io/common/write_error.h"
 #include "io/terrain/dem_raster.h"
 #include "io/run/run_driver.h"
 #include "io/scene/scene.h"
@@ -133,6 +134,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 2;
+  } catch (const WriteError& e) { // exit status 4: an output could not be written
+    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    return 4;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 1;

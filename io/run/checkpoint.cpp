@@ -61,6 +61,7 @@ void writeCheckpoint(const std::string& path, const Simulation& sim, const std::
       if (extra) extra(a);
     }
     h5::writeAttribute(f, "time", sim.time());
+    h5::closeFile(f);
   });
 }
 

@@ -3,7 +3,6 @@
 #include "io/common/atomic_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -93,9 +92,7 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
     for (const auto& [key, value] : o.summary) j << ",\n  " << jsonString(key) << ": " << value;
   j << "\n}\n";
   writeAtomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << j.str();
-    if (!out) throw std::runtime_error("cannot write " + path);
+    writeFileBytes(tmp, j.str());
   });
 }
 
