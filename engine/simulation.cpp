@@ -326,6 +326,7 @@ void Simulation::load(const StateArchive& a) {
   maxSpeed_ = a.getValue<double>("max_speed");
   initialMass_ = a.getValue<double>("initial_mass");
   a.getVector("mass_removed", massRemoved_);
+  if (massRemoved_.size() != groupPtrs_.size()) throw std::runtime_error("mass ledger does not fit the materials");
 }
 
 } // namespace talus

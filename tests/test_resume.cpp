@@ -114,5 +114,5 @@ TEST(Resume, ResumingWithoutACheckpointIsAClearError) {
   const std::string dir = test::tempDir("resume_missing");
   const std::string scene = dir + "/scene.toml";
   std::ofstream(scene) << kScene;
-  EXPECT_EQ(run(scene + " --resume " + dir + "/nowhere"), 1);
+  EXPECT_EQ(run(scene + " --resume " + dir + "/nowhere"), 2);
 }

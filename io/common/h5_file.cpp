@@ -43,9 +43,11 @@ std::string lastError() {
   return descs.empty() ? "HDF5 call failed" : descs.back();
 }
 
-Handle createFile(const std::string& path) {
+Handle createFile(const std::string& path, size_t userBlock) {
   quiet();
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  if (userBlock) H5Pset_userblock(fcpl, hsize_t(userBlock));
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
   if (f < 0) throw WriteError(path, lastError());
   return Handle(f, H5Fclose);
 }

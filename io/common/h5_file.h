@@ -41,7 +41,8 @@ private:
 };
 
 /// Creates (truncates) a file for writing; throws WriteError naming it and the cause.
-Handle createFile(const std::string& path);
+/// `userBlock` bytes (0 or a power of two >= 512) are left at the start for the caller.
+Handle createFile(const std::string& path, size_t userBlock = 0);
 /// Closes a file created for writing, reporting a failed final flush as a WriteError. A writer
 /// must call it: the handle's destructor ignores errors.
 void closeFile(Handle& file);

@@ -40,13 +40,14 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   const double checkpointEvery =
       scene.output.checkpointInterval < 0 ? scene.endTime / 10 : scene.output.checkpointInterval;
   const std::string checkpointFile = checkpointPath(res.outDir);
+  const CheckpointIdentity identity{scene.hash};
   int frame = 0;
   double nextCheckpoint = checkpointEvery > 0 ? checkpointEvery : std::numeric_limits<double>::infinity();
   // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
   // resumed run then replaces their accumulated state with the checkpoint's.
   outputs.start(sim);
   if (opt.resume) {
-    readCheckpoint(checkpointFile, sim, [&](const StateArchive& a) {
+    readCheckpoint(checkpointFile, sim, identity, [&](const StateArchive& a) {
       outputs.load(a);
       frame = a.getValue<int32_t>("driver/next_frame");
       nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
@@ -55,7 +56,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
     outputs.frame(sim, frame++);
   }
   auto checkpoint = [&] {
-    writeCheckpoint(checkpointFile, sim, [&](StateArchive& a) {
+    writeCheckpoint(checkpointFile, sim, identity, [&](StateArchive& a) {
       outputs.save(a);
       a.putValue("driver/next_frame", int32_t(frame));
       a.putValue("driver/next_checkpoint", nextCheckpoint);
