@@ -43,6 +43,8 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   j << "{\n";
   j << "  \"scene\": " << jsonString(info.scene) << ",\n";
   j << "  \"status\": " << jsonString(info.status) << ",\n";
+  if (!info.signal.empty())
+    j << "  \"interrupted_by\": " << jsonString(info.signal) << ",\n  \"checkpoint\": \"checkpoint.h5\",\n";
   j << "  \"steps\": " << sim.steps() << ",\n";
   j << "  \"simulated_time\": " << num(sim.time()) << ",\n";
   j << "  \"wall_seconds\": " << num(info.wallSeconds) << ",\n";
