@@ -6,6 +6,7 @@
 #include "process_support.h"
 #include "terrain_test_support.h"
 
+#include <cstring>
 #include <gtest/gtest.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetSphere.h>
@@ -169,6 +170,29 @@ TEST(DamagedInputs, LevelSetsTruncatedCorruptedOrNotLevelSets) {
   auto notFinite = openvdb::FloatGrid::create(1.f);
   notFinite->tree().setValue(openvdb::Coord(0, 0, 0), std::numeric_limits<float>::quiet_NaN());
   expectLevelSetRefused(save("nan.vdb", notFinite), "not finite");
+  // A blosc chunk's stated length, damaged (found by the level-set fuzzer): OpenVDB 10 read a
+  // stored chunk of any length into its buffer and allocated any compressed length.
+  auto blosc = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.f, openvdb::Vec3f(0.f), 0.25f);
+  openvdb::io::File bf(dir() + "/blosc.vdb");
+  bf.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
+  bf.write({blosc});
+  bf.close();
+  const std::string packed = test::slurp(dir() + "/blosc.vdb");
+  ASSERT_NO_THROW(VdbLevelSet(dir() + "/blosc.vdb", "", Vec3d::Zero()));
+  size_t at = 0; // the first chunk: its int64 length, then a blosc header (version 2) repeating it
+  for (; at + 24 < packed.size(); ++at) {
+    int64_t n;
+    uint32_t cbytes;
+    std::memcpy(&n, packed.data() + at, 8);
+    std::memcpy(&cbytes, packed.data() + at + 20, 4);
+    if (n > 16 && n < 1 << 20 && packed[at + 8] == 2 && cbytes == uint64_t(n)) break;
+  }
+  ASSERT_LT(at + 24, packed.size()) << "no blosc chunk found";
+  for (const int64_t stated : {int64_t(-100000), int64_t(0x3f0946503f094650)}) {
+    std::string bad = packed;
+    std::memcpy(bad.data() + at, &stated, 8);
+    expectLevelSetRefused(write("blosc_length.vdb", bad), stated < 0 ? "states another length" : "compressed bytes");
+  }
   // Through the scene reader: the key and the file on one line.
   const std::string scene = "[simulation]\ndx = 0.1\nend_time = 1\n[domain]\nmin = [-3, -3, -3]\nmax = [3, 3, 3]\n"
                             "[terrain]\nsdf = \"" + dir() + "/cut.vdb\"\nboundary = \"slip\"\n"

@@ -198,20 +198,29 @@ size_t fillNodata(DemRaster& dem) {
   if (!ds) throw InputError(dem.sourcePath, "cannot allocate the fill buffer");
   std::vector<float> mask(g.size());
   for (size_t i = 0; i < g.size(); ++i) mask[i] = std::isnan(dem.height[i]) ? 0.f : 1.f;
-  std::vector<float> h(dem.height);
-  for (float& v : h)
-    if (std::isnan(v)) v = 0;
+  std::vector<float> h(dem.height); // holes stay NaN: a cell the search cannot reach stays NaN
   GDALRasterBand* hb = ds->GetRasterBand(1);
   GDALRasterBand* mb = ds->GetRasterBand(2);
   if (hb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None ||
       mb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, mask.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
     throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
-  const double searchCells = double(std::max(g.nx, g.ny));
-  if (GDALFillNodata(GDALRasterBand::ToHandle(hb), GDALRasterBand::ToHandle(mb), searchCells, 0, 2, nullptr, nullptr,
-                     nullptr) != CE_None)
+  // The search costs time in proportion to its radius for every hole (a 4 x 45 000-cell raster
+  // of holes took minutes with the raster's length): capped, holes farther from data are refused.
+  const double searchCells = double(std::min(std::max(g.nx, g.ny), kMaxFillCells));
+  // GDAL's default work files are GeoTIFFs in the current folder, left behind when a run is
+  // killed; the DEM is in memory anyway.
+  const char* fillOptions[] = {"TEMP_FILE_DRIVER=MEM", nullptr};
+  if (GDALFillNodata(GDALRasterBand::ToHandle(hb), GDALRasterBand::ToHandle(mb), searchCells, 0, 2,
+                     const_cast<char**>(fillOptions), nullptr, nullptr) != CE_None)
     throw InputError(dem.sourcePath, "filling no-data failed (" + lastGdalMessage() + ")");
   if (hb->RasterIO(GF_Read, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
     throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
+  size_t unreached = 0;
+  for (size_t i = 0; i < g.size(); ++i) unreached += std::isnan(h[i]) || !std::isfinite(h[i]);
+  if (unreached > 0)
+    throw InputError(dem.sourcePath, std::to_string(unreached) + " no-data cells lie more than " +
+                                         std::to_string(kMaxFillCells) +
+                                         " cells from any valid cell and cannot be filled; crop the DEM");
   for (size_t i = 0; i < g.size(); ++i)
     if (std::isnan(dem.height[i])) dem.height[i] = h[i];
   return holes;

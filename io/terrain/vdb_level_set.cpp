@@ -12,6 +12,8 @@
 
 namespace talus {
 
+extern const bool kVdbBloscGuard; // vdb_blosc_guard.cpp: OpenVDB's blosc reader, with length checks
+
 struct VdbLevelSet::Impl {
   openvdb::FloatGrid::Ptr grid;
 };
@@ -19,6 +21,7 @@ struct VdbLevelSet::Impl {
 VdbLevelSet::VdbLevelSet(const std::string& path, const std::string& gridName, const Vec3d& origin)
     : impl_(std::make_unique<Impl>()), origin_(origin), path_(path) {
   openvdb::initialize();
+  if (!kVdbBloscGuard) throw std::logic_error("the blosc guard is not linked");
   checkVdbFile(path);
   try {
     // Read as a stream that throws at the first read past the end, so a damaged count inside a
