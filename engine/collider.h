@@ -45,6 +45,10 @@ struct ContactBatch {
   int16_t node[kBlockNodes];   ///< law nodes first, then held nodes from the end
   ContactNode contact[kBlockNodes];
   Vec3 velocity[kBlockNodes];  ///< the collider's velocity at each node (zero when at rest)
+  // Scratch for laws mixed by material (engine/grid_update.cpp): the nodes as gathered, and the
+  // mass-weighted sum of the laws' velocities.
+  ContactNode original[kBlockNodes];
+  Vec3 mixed[kBlockNodes];
 };
 
 class Collider {

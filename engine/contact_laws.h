@@ -9,12 +9,16 @@ namespace talus {
 /// No-slip: the node moves with the collider.
 struct StickyLaw {
   static constexpr const char* kName = "sticky";
+  static constexpr bool kNeedsThickness = false;
+  static std::vector<std::string> parameterNames() { return {}; }
   void apply(ContactNode& c, const ContactStep&) const { c.v.setZero(); }
 };
 
 /// Frictionless: the normal velocity into the collider is removed.
 struct SlipLaw {
   static constexpr const char* kName = "slip";
+  static constexpr bool kNeedsThickness = false;
+  static std::vector<std::string> parameterNames() { return {}; }
   void apply(ContactNode& c, const ContactStep&) const {
     const Real vn = c.v.dot(c.n);
     if (vn < 0) c.v -= vn * c.n;
@@ -26,8 +30,11 @@ struct SlipLaw {
 /// v <- max(0, 1 + mu vn / |vt|) vt.
 struct CoulombLaw {
   static constexpr const char* kName = "coulomb";
+  static constexpr bool kNeedsThickness = false;
+  static std::vector<std::string> parameterNames() { return {"friction"}; }
   Real mu = 0;
   void apply(ContactNode& c, const ContactStep&) const {
+    const Real mu = c.params ? Real(c.params[0]) : this->mu;
     const Real vn = c.v.dot(c.n);
     if (vn >= 0) return;
     const Vec3 vt = c.v - vn * c.n;

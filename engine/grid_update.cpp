@@ -9,18 +9,54 @@ namespace {
 
 /// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
 /// from the material, N s) and its moment about `ref`.
+/// The contact nodes' velocities under the collider's law, or, where materials with their own
+/// basal law have mass, the mass-weighted mean of every law's result.
+void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, const float* extra, int channels,
+               const Vec4* nodes, ContactBatch& batch, const ContactStep& step) {
+  bool mixed = false;
+  for (int i = 0; i < batch.count && !mixed; ++i)
+    for (const MaterialLaw& m : laws)
+      mixed |= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] > 0.f;
+  if (!mixed) {
+    own.apply(batch.contact, batch.count, step);
+    return;
+  }
+  std::copy(batch.contact, batch.contact + batch.count, batch.original);
+  own.apply(batch.contact, batch.count, step);
+  for (int i = 0; i < batch.count; ++i) {
+    Real rest = Real(1);
+    for (const MaterialLaw& m : laws)
+      rest -= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
+    batch.mixed[i] = std::max(rest, Real(0)) * batch.contact[i].v;
+  }
+  for (const MaterialLaw& m : laws) {
+    std::copy(batch.original, batch.original + batch.count, batch.contact);
+    m.law->apply(batch.contact, batch.count, step);
+    for (int i = 0; i < batch.count; ++i) {
+      const Real f = extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
+      batch.mixed[i] += f * batch.contact[i].v;
+    }
+  }
+  for (int i = 0; i < batch.count; ++i) batch.contact[i].v = batch.mixed[i];
+}
+
 void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
-                   const Vec3d& ref, Vec4* nodes, ContactBatch& batch, double* acc) {
+                   const Vec3d& ref, const FlowColumns::BlockLines* lines, const std::vector<MaterialLaw>& laws,
+                   const float* extra, int channels, Vec4* nodes, ContactBatch& batch, double* acc) {
   col.gather(b, c, dx, nodes, batch);
   if (batch.count == 0 && batch.held == 0) return;
   const bool moving = col.moves();
+  // Thickness is measured for every law when any law asks (the grid then has the columns).
+  const bool thickness = lines != nullptr;
   for (int i = 0; i < batch.count; ++i) {
     const Vec4& nd = nodes[batch.node[i]];
     ContactNode& cn = batch.contact[i];
     cn.mass = nd[0];
     cn.v = moving ? Vec3(nd.tail<3>() - batch.velocity[i]) : Vec3(nd.tail<3>());
+    if (thickness) FlowColumns::at(*lines, batch.node[i], cn.n, Real(dx), cn.h, cn.rho);
   }
-  col.law().apply(batch.contact, batch.count, step);
+  if (laws.empty()) col.law().apply(batch.contact, batch.count, step);
+  else applyLaws(col.law(), laws, extra, channels, nodes, batch, step);
   Vec3d force = Vec3d::Zero(), moment = Vec3d::Zero();
   auto settle = [&](int n, const Vec3& vNew) {
     Vec4& nd = nodes[n];
@@ -43,12 +79,14 @@ void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double 
 } // namespace
 
 void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const std::vector<Collider*>& colliders,
-                          double time, std::vector<ColliderLoad>& loads) {
+                          double time, const FlowColumns* columns, std::vector<ColliderLoad>& loads) {
   const Vec3 dtg = prm.dt * prm.gravity;
   const Real keep = Real(1) / (Real(1) + prm.damping * prm.dt);
   const size_t K = colliders.size(), nBlocks = grid.blockCount();
   const double dx = grid.dx;
-  const ContactStep step{prm.dt};
+  const ContactStep step{prm.dt, prm.gravity};
+  static const std::vector<MaterialLaw> kNone;
+  const std::vector<MaterialLaw>& laws = prm.materialLaws ? *prm.materialLaws : kNone;
   std::vector<Vec3d> refs(K);
   for (size_t k = 0; k < K; ++k) refs[k] = colliders[k]->reference(time);
   // Per block and collider: impulse and its moment (6 doubles), summed in block order below.
@@ -69,8 +107,12 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
         node.tail<3>() = (node.tail<3>() / node[0] + dtg) * keep;
       }
       const BlockCoord& c = grid.topology.coord(uint32_t(b));
+      FlowColumns::BlockLines lines{};
+      if (columns) lines = columns->lines(c);
       for (size_t k = 0; k < K; ++k)
-        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], nodes, batch, &perBlock[(b * K + k) * 6]);
+        applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr,
+                      laws, laws.empty() ? nullptr : grid.blockExtra(uint32_t(b)),
+                      grid.extraChannels, nodes, batch, &perBlock[(b * K + k) * 6]);
     }
   });
 

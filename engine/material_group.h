@@ -5,6 +5,7 @@
 // template code (materials/solid_group.h, materials/fluid_group.h) runs the model inline.
 #pragma once
 
+#include "engine/contact_law.h"
 #include "engine/padded_block.h"
 #include "engine/particle_set.h"
 #include "engine/state_archive.h"
@@ -44,6 +45,9 @@ public:
   int index() const { return index_; }     ///< position in the scene's material list
   double density() const { return density_; } ///< reference density (kg/m3)
   size_t size() const { return particles.size(); }
+
+  /// This material's own law at every collider (`[[materials]] basal`), or null: the collider's.
+  std::shared_ptr<const ContactLaw> basalLaw;
 
   ParticleSet particles;
   /// Particles of active block b are [blockStart[b], blockStart[b+1]) after binning.

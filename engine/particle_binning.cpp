@@ -12,7 +12,7 @@ constexpr size_t kChunk = 4096; // fixed chunking keeps results independent of t
 size_t chunkCount(size_t n) { return (n + kChunk - 1) / kChunk; }
 } // namespace
 
-void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid) {
+void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, const Periodicity* periodic) {
   const Real invDx = Real(1) / grid.dx;
 
   // 1. Owning blocks. Particles are mostly sorted already, so runs of equal blocks are long
@@ -31,6 +31,7 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid) {
     });
     for (const auto& r : runs) owning.insert(owning.end(), r.begin(), r.end());
   }
+  if (periodic && periodic->any()) periodic->addImages(owning);
   grid.topology.rebuild(owning);
   const size_t nBlocks = grid.topology.size();
 
@@ -86,6 +87,7 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.nodes.size(), 1 << 14), [&](const auto& r) {
     std::fill(grid.nodes.begin() + r.begin(), grid.nodes.begin() + r.end(), Vec4::Zero());
   });
+  grid.extra.assign(nBlocks * kBlockNodes * size_t(grid.extraChannels), 0.f);
 }
 
 } // namespace talus

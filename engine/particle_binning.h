@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/material_group.h"
+#include "engine/periodic.h"
 #include "engine/sparse_grid.h"
 
 #include <vector>
@@ -11,6 +12,7 @@ namespace talus {
 /// Rebuilds grid.topology from particle positions, stably sorts every group's particles by
 /// owning block (physically reordering their arrays), fills each group's blockStart, the
 /// grid's owning-block list and colour lists, and zeroes the node arrays.
-void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid);
+/// With `periodic`, the images of blocks holding ghost nodes are made active too.
+void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, const Periodicity* periodic = nullptr);
 
 } // namespace talus

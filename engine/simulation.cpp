@@ -29,6 +29,14 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
   grid_.dx = Real(settings_.dx);
   for (auto& g : groups_) groupPtrs_.push_back(g.get());
   buildColliders();
+  for (int a = 0; a < 3; ++a)
+    if (settings_.periodic[size_t(a)]) {
+      periodic_.axis[a] = true;
+      periodic_.lo[a] = int(std::lround(settings_.domain.min[a] / settings_.dx));
+      periodic_.n[a] = int(std::lround((settings_.domain.max[a] - settings_.domain.min[a]) / settings_.dx));
+      if (periodic_.n[a] % kBlockDim != 0 || std::abs(periodic_.lo[a] * settings_.dx - settings_.domain.min[a]) > 1e-6 * settings_.dx)
+        throw std::invalid_argument("a periodic axis needs a domain extent of a multiple of 8 dx from a node");
+    }
   int maxIndex = 0;
   for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
   massRemoved_.assign(size_t(maxIndex), 0.0);
@@ -51,7 +59,7 @@ void Simulation::buildColliders() {
                                                     Vec3d::Zero()));
   structures(false);
   for (int f = 0; f < 6; ++f)
-    if (settings_.faces[size_t(f)]) {
+    if (settings_.faces[size_t(f)] && !settings_.periodic[size_t(f / 2)]) {
       const int axis = f / 2;
       const bool upper = f % 2;
       colliders_.push_back(std::make_unique<Collider>(Collider::face(
@@ -61,6 +69,23 @@ void Simulation::buildColliders() {
   structures(true);
   for (auto& c : colliders_) colliderPtrs_.push_back(c.get());
   loads_.assign(colliders_.size(), ColliderLoad{});
+  // P2G's extra channels: each particle's volume (channel 0) when a law needs the flow
+  // thickness, then the node mass of each material with its own basal law.
+  for (const auto& c : colliders_) needsThickness_ |= c->law().needsThickness();
+  for (const auto* g : groupPtrs_)
+    if (g->basalLaw) needsThickness_ |= g->basalLaw->needsThickness();
+  int channels = needsThickness_ ? 1 : 0;
+  for (const auto* g : groupPtrs_) {
+    std::vector<std::pair<int, float>> to;
+    if (needsThickness_) to.push_back({0, float(1.0 / g->density())});
+    if (g->basalLaw && !colliders_.empty()) {
+      materialLaws_.push_back(MaterialLaw{channels, g->basalLaw.get()});
+      to.push_back({channels++, 1.f});
+    }
+    grid_.extraOf.push_back(std::move(to));
+  }
+  grid_.extraChannels = channels;
+  if (!channels) grid_.extraOf.clear();
 }
 
 double Simulation::maxWaveSpeed() const {
@@ -88,7 +113,7 @@ double Simulation::step(double dtCap) {
   const Real rdt = Real(dt);
   {
     ScopedTimer t(times_.bin);
-    binParticles(groupPtrs_, grid_);
+    binParticles(groupPtrs_, grid_, &periodic_);
   }
   {
     ScopedTimer t(times_.colliders);
@@ -107,7 +132,11 @@ double Simulation::step(double dtCap) {
     const double ramp = 0.5 * (1 - std::cos(M_PI * s));
     prm.gravity = (ramp * settings_.gravity).cast<Real>();
     prm.damping = Real(settings_.damping);
-    updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, loads_);
+    prm.materialLaws = &materialLaws_;
+    if (periodic_.any()) periodic_.fold(grid_);
+    if (needsThickness_) columns_.build(grid_, 0);
+    updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
+    if (periodic_.any()) periodic_.unfold(grid_);
   }
   G2PStats stats;
   {
@@ -162,10 +191,15 @@ void Simulation::cullEscaped() {
   for (int d = 0; d < 3; ++d) {
     lo[d] = Real(settings_.domain.min[d] - (settings_.faces[2 * d] ? half : 0.0));
     hi[d] = Real(settings_.domain.max[d] + (settings_.faces[2 * d + 1] ? half : 0.0));
+    if (periodic_.axis[d]) lo[d] = -std::numeric_limits<Real>::max(), hi[d] = std::numeric_limits<Real>::max();
   }
   for (auto* g : groupPtrs_) {
     auto& P = g->particles;
     const size_t n = P.size();
+    if (periodic_.any())
+      for (size_t p = 0; p < n; ++p)
+        for (int a = 0; a < 3; ++a)
+          if (periodic_.axis[a]) P.x[p][a] = periodic_.wrap(a, P.x[p][a], Real(settings_.dx));
     std::vector<uint8_t> keep(n);
     size_t kept = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, n, 8192), size_t(0),

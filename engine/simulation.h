@@ -2,6 +2,9 @@
 #pragma once
 
 #include "engine/collider.h"
+#include "engine/flow_thickness.h"
+#include "engine/grid_update.h"
+#include "engine/periodic.h"
 #include "engine/contact_laws.h"
 #include "engine/material_group.h"
 #include "engine/sparse_grid.h"
@@ -54,6 +57,8 @@ struct SimulationSettings {
   std::shared_ptr<const Sdf> terrain; ///< optional ground
   std::shared_ptr<const ContactLaw> terrainLaw = makeContactLaw(CoulombLaw{Real(0.3)});
   std::vector<StructureSpec> structures;
+  /// Periodic axes (the domain's extent along them a multiple of 8 dx; no faces there).
+  std::array<bool, 3> periodic{false, false, false};
 };
 
 /// Wall-clock seconds spent in each phase of the step, summed over the run.
@@ -143,6 +148,10 @@ private:
   std::vector<std::unique_ptr<Collider>> colliders_;
   std::vector<Collider*> colliderPtrs_;
   std::vector<ColliderLoad> loads_;
+  bool needsThickness_ = false;
+  std::vector<MaterialLaw> materialLaws_; ///< materials with their own basal law
+  Periodicity periodic_;
+  FlowColumns columns_;
   double time_ = 0;
   uint64_t steps_ = 0, particleSteps_ = 0;
   double maxSpeed_ = 0;

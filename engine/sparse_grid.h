@@ -16,13 +16,22 @@ struct SparseGrid {
   std::vector<uint32_t> owning;          ///< active blocks that hold particles
   std::array<std::vector<uint32_t>, 8> colours; ///< owning blocks by blockColour
   std::vector<double> contactImpulse;     ///< grid update scratch: per block and collider, impulse and moment
+  /// Extra per-node channels, scattered by P2G only when a collider's law needs them (the flow
+  /// volume for thickness, per-material masses for mixed laws): `extraChannels` floats per node,
+  /// node-major within block-major order. Per group g, extraOf[g] lists (channel, factor): the
+  /// group adds factor * particle mass to the channel (1/rho: volume; 1: mass).
+  int extraChannels = 0;
+  std::vector<float> extra;
+  std::vector<std::vector<std::pair<int, float>>> extraOf;
 
   size_t blockCount() const { return topology.size(); }
   Vec4* block(uint32_t b) { return nodes.data() + size_t(b) * kBlockNodes; }
   const Vec4* block(uint32_t b) const { return nodes.data() + size_t(b) * kBlockNodes; }
+  float* blockExtra(uint32_t b) { return extra.data() + size_t(b) * kBlockNodes * size_t(extraChannels); }
+  const float* blockExtra(uint32_t b) const { return extra.data() + size_t(b) * kBlockNodes * size_t(extraChannels); }
   size_t memoryBytes() const {
     return topology.memoryBytes() + nodes.capacity() * sizeof(Vec4) + owning.capacity() * 4 +
-           contactImpulse.capacity() * sizeof(double);
+           contactImpulse.capacity() * sizeof(double) + extra.capacity() * sizeof(float);
   }
 };
 

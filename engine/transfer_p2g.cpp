@@ -50,12 +50,29 @@ void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
   });
 }
 
+/// The extra channels of particles [begin, end): factor * mass into each listed channel.
+void scatterExtra(const ParticleSet& P, size_t begin, size_t end, const std::vector<std::pair<int, float>>& to,
+                  int channels, Real invDx, const int origin[3], float* buf) {
+  for (size_t p = begin; p < end; ++p) {
+    const QuadraticStencil s(P.x[p] * invDx);
+    const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) {
+          const float w = float(s.w[0][i] * s.w[1][j] * s.w[2][k]) * float(P.mass[p]);
+          float* node = buf + size_t(padIndex(l0 + i, l1 + j, l2 + k)) * size_t(channels);
+          for (const auto& [ch, factor] : to) node[ch] += w * factor;
+        }
+  }
+}
+
 } // namespace
 
 void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
   for (const auto& colour : grid.colours) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, colour.size(), 1), [&](const auto& r) {
       std::vector<Vec4> buf(kPadNodes);
+      std::vector<float> extra;
       for (size_t c = r.begin(); c != r.end(); ++c) {
         const uint32_t b = colour[c];
         std::fill(buf.begin(), buf.end(), Vec4::Zero());
@@ -67,6 +84,21 @@ void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid
             scatterRange(g->particles, begin, end, Real(1.0 / g->density()), dt, grid.dx, origin, buf.data());
         }
         flush(buf.data(), grid, b);
+        if (grid.extraChannels > 0) {
+          const int C = grid.extraChannels;
+          extra.assign(size_t(kPadNodes) * size_t(C), 0.f);
+          for (size_t gi = 0; gi < groups.size(); ++gi) {
+            const size_t begin = groups[gi]->blockStart[b], end = groups[gi]->blockStart[b + 1];
+            if (begin != end && !grid.extraOf[gi].empty())
+              scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], C, Real(1) / grid.dx, origin, extra.data());
+          }
+          const auto& up = grid.topology.upper(b);
+          forEachPaddedRow([&](int d, int pad, int node, int n) {
+            float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C);
+            const float* in = extra.data() + size_t(pad) * size_t(C);
+            for (int k = 0; k < n * C; ++k) out[k] += in[k];
+          });
+        }
       }
     });
   }

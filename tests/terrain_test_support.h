@@ -5,6 +5,7 @@
 #include "io/terrain/dem_raster.h"
 #include "test_support.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
@@ -57,7 +58,7 @@ inline void writeRawRaster(const std::string& path, int nx, int ny, const double
 
 struct TestPolygon {
   std::vector<std::pair<double, double>> ring; ///< outer ring (closed automatically)
-  double thickness = 0;                        ///< written to the "thickness" field
+  double thickness = 0;                        ///< written to the "thickness" field (NaN: left null)
 };
 
 /// Writes polygons with a "thickness" field: `driver` "ESRI Shapefile" or "GeoJSON".
@@ -76,7 +77,7 @@ inline void writePolygons(const std::string& path, const std::vector<TestPolygon
   layer->CreateField(&field);
   for (const auto& p : polys) {
     OGRFeature* f = OGRFeature::CreateFeature(layer->GetLayerDefn());
-    f->SetField("thickness", p.thickness);
+    if (!std::isnan(p.thickness)) f->SetField("thickness", p.thickness);
     OGRLinearRing ring;
     for (const auto& [x, y] : p.ring) ring.addPoint(x, y);
     ring.closeRings();

@@ -1,6 +1,8 @@
 // The step's kernels one at a time, on hand-built particle sets and grids (engine/particle_binning,
 // transfer_p2g, transfer_g2p): what each must do whatever the scene.
 #include "engine/bspline.h"
+#include "engine/contact_laws.h"
+#include "engine/grid_update.h"
 #include "engine/particle_binning.h"
 #include "engine/transfer_g2p.h"
 #include "engine/transfer_p2g.h"
@@ -181,4 +183,49 @@ TEST(Kernels, G2PCountsANonFiniteStressInTheStepThatMadeIt) {
     if (p == begin + 1) g->particles.tau[p].xz = std::numeric_limits<Real>::quiet_NaN();
   });
   EXPECT_EQ(stats.nonFinite, 1u);
+}
+
+TEST(Kernels, GridUpdateMixesMaterialLawsByTheirMassAtANode) {
+  // Two materials at one point above a Coulomb (0.2) floor, 3 kg without a law of their own and
+  // 1 kg with a sticky one, moving at (1, 0, -0.1): every floor node takes 3/4 of the Coulomb
+  // result (1 - 0.2 * 0.1 = 0.98 m/s along x) and 1/4 of the sticky one (at rest).
+  auto a = scattered(1, 5), b = scattered(1, 6);
+  b->basalLaw = makeContactLaw(StickyLaw{});
+  for (auto* g : {a.get(), b.get()}) {
+    g->particles.x[0] = Vec3(Real(0.33), Real(0.34), Real(0.02));
+    g->particles.v[0] = Vec3(1, 0, Real(-0.1));
+  }
+  a->particles.mass[0] = 3, b->particles.mass[0] = 1;
+  SparseGrid grid;
+  grid.dx = Real(kDx);
+  grid.extraChannels = 1;
+  grid.extraOf = {{}, {{0, 1.f}}}; // channel 0: the sticky material's node mass
+  std::vector<MaterialGroup*> groups{a.get(), b.get()};
+  binParticles(groups, grid);
+  particlesToGrid(groups, grid, Real(1e-3));
+  Collider floor = Collider::face("z_min", 2, false, 0.0, makeContactLaw(CoulombLaw{Real(0.2)}));
+  floor.prepare(grid.topology, kDx, 0.0);
+  GridUpdateParams prm;
+  prm.dt = Real(1e-3);
+  const std::vector<MaterialLaw> laws{{0, b->basalLaw.get()}};
+  prm.materialLaws = &laws;
+  std::vector<ColliderLoad> loads;
+  updateGridVelocities(grid, prm, {&floor}, 0.0, nullptr, loads);
+  int onFloor = 0, above = 0;
+  for (uint32_t blk = 0; blk < grid.blockCount(); ++blk)
+    for (int n = 0; n < kBlockNodes; ++n) {
+      const Vec4& nd = grid.block(blk)[n];
+      if (nd[0] <= 0) continue;
+      const int k = grid.topology.coord(blk).z * kBlockDim + (n & 7);
+      if (k <= 0) {
+        ++onFloor;
+        EXPECT_NEAR(nd[1], 0.75 * 0.98, 1e-6) << "floor node";
+        EXPECT_NEAR(nd[3], 0, 1e-7);
+      } else {
+        ++above;
+        EXPECT_NEAR(nd[1], 1, 1e-6);
+      }
+    }
+  EXPECT_EQ(onFloor, 18); // the stencil spans node layers k = -1, 0 (in the floor) and 1
+  EXPECT_EQ(above, 9);
 }

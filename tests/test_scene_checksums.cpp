@@ -89,22 +89,24 @@ std::map<std::string, std::string> readRecorded() {
 }
 
 void checkScene(const std::string& name) {
+  const bool record = std::getenv("TALUS_RECORD_CHECKSUMS") != nullptr;
+  const auto recorded = readRecorded();
+  const std::string key = buildTag() + "/" + name;
+  // Other builds round differently: skip before spending minutes (under sanitizers) on the run.
+  if (!record && !recorded.count(key))
+    GTEST_SKIP() << "no checksum recorded for build " << buildTag() << " (see the file's header)";
   test::useTestTerrainCache();
   const std::string file = std::string(TALUS_SOURCE_DIR) + "/data/scenes/" + name + ".toml";
   SceneSetup s = loadSceneFile(file);
   Simulation sim(s.settings, std::move(s.groups));
   for (int i = 0; i < kSteps; ++i) sim.step();
   const std::string hash = stateHash(sim);
-  const std::string key = buildTag() + "/" + name;
   std::printf("%s %s (%zu particles, t = %.6g s)\n", key.c_str(), hash.c_str(), sim.particleCount(), sim.time());
-  if (std::getenv("TALUS_RECORD_CHECKSUMS")) {
+  if (record) {
     std::ofstream(checksumFile(), std::ios::app) << key << " " << hash << "\n";
     return;
   }
-  const auto recorded = readRecorded();
-  const auto it = recorded.find(key);
-  if (it == recorded.end()) GTEST_SKIP() << "no checksum recorded for build " << buildTag() << " (see the file's header)";
-  EXPECT_EQ(hash, it->second) << name << ": the first " << kSteps << " steps no longer give the recorded particle state";
+  EXPECT_EQ(hash, recorded.at(key)) << name << ": the first " << kSteps << " steps no longer give the recorded particle state";
 }
 
 } // namespace

@@ -97,3 +97,13 @@ TEST(Scenes, WolfsgrubenRunsAFewSteps) {
   EXPECT_GT(c.ref.area, 1e5);
   EXPECT_GT(c.sim.area, 1e4); // the release itself, after a few steps
 }
+
+TEST(Scenes, WolfsgrubenFromItsAvaFrameFolderRunsAFewSteps) {
+  if (test::sharedDir().empty()) GTEST_SKIP() << "../shared (AvaFrame avaWog data) not found";
+  const Ran r = runShort("wolfsgruben_avaframe", {"simulation.end_time=0.2"});
+  // The folder's DEM is ESRI ASCII: so are the peak files AvaFrame's tools read.
+  size_t asc = 0;
+  for (const auto& e : fs::directory_iterator(r.dir + "/peakFiles"))
+    asc += e.path().extension() == ".asc" && e.path().filename().string().rfind("relWog_", 0) == 0;
+  EXPECT_EQ(asc, 4u); // pft, pfv, ppr, pfd
+}

@@ -2,6 +2,7 @@
 // and motions, and one-line errors for what does not make sense.
 #include "test_support.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 
 using namespace talus;
@@ -118,4 +119,19 @@ TEST(StructuresInput, BadLawsAndStructuresAreOneLineErrors) {
   expectError(scene("", "[[structures]]\nshape = \"pyramid\"\n"), "structures[0].shape", "not one of");
   expectError(scene("", std::string(kDam) + "motion = { velocity = [1, 0, 0], start = 2, stop = 1 }\n"),
               "structures[0].motion.stop", "later than start");
+}
+
+TEST(StructuresInput, BasalLawsPeriodicAxesAndMaterialLawsAreCheckedWhereGiven) {
+  // Rate laws take their parameters beside the law or inline; unknown parameters fail by name.
+  const auto names = colliderNames(scene("z_min = { law = \"voellmy\", friction = 0.2, xi = 1000 }\n"));
+  EXPECT_NE(std::find(names.begin(), names.end(), "z_min:voellmy"), names.end());
+  expectError(scene("z_min = { law = \"voellmy\", friction = -1 }\n"), "domain.z_min.friction", "");
+  expectError(scene("z_min = { law = \"samosat\", kappa = 0 }\n"), "domain.z_min.kappa", "");
+  // 20 cells along x: not whole 8-node blocks.
+  expectError(scene("periodic = [\"x\"]\n"), "domain.periodic", "multiple of 8 dx");
+  expectError(scene("periodic = [\"w\"]\n"), "domain.periodic", "not an axis");
+  // A material's own law: a wrong name is refused with the valid ones.
+  std::string text = scene("");
+  text.replace(text.find("friction_angle = 30"), 19, "friction_angle = 30\nbasal = { law = \"glue\" }");
+  expectError(text, "materials[0].basal.law", "'glue' is not one of: sticky");
 }

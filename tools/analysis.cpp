@@ -17,6 +17,13 @@
 
 namespace talus::analysis {
 
+std::string defaultLabel(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::string parent = p.parent_path().filename().string();
+  if (parent.empty() || parent == "maps" || parent == ".") return p.stem().string();
+  return parent + " " + p.stem().string();
+}
+
 DemRaster readRaster(const std::string& path) {
   DemReadOptions o;
   o.keepNodata = true;

@@ -18,6 +18,10 @@ namespace talus::analysis {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+/// A label from a map's path: "maps/rock/deposit_thickness.tif" -> "rock deposit_thickness",
+/// "maps/x.tif" -> "x".
+std::string defaultLabel(const std::string& path);
+
 /// Band 1 of a north-up raster with square cells (any format GDAL reads); no-data is NaN.
 /// Throws InputError naming the file.
 DemRaster readRaster(const std::string& path);

@@ -4,6 +4,7 @@
 #include "io/output/map_quicklook.h"
 #include "io/output/series_plots.h"
 #include "tools/analysis.h"
+#include "tools/path_commands.h"
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -18,14 +19,6 @@ namespace fs = std::filesystem;
 using namespace analysis;
 
 namespace {
-
-/// "maps/rock/deposit_thickness.tif" -> "rock deposit_thickness"; "maps/x.tif" -> "x".
-std::string defaultLabel(const std::string& path) {
-  const fs::path p(path);
-  const std::string parent = p.parent_path().filename().string();
-  if (parent.empty() || parent == "maps" || parent == ".") return p.stem().string();
-  return parent + " " + p.stem().string();
-}
 
 std::string num(double v, const char* fmt = "%.6g") {
   if (!std::isfinite(v)) return "-";
@@ -103,6 +96,7 @@ std::vector<double> thresholdsOr(const std::vector<double>& t, double fallback) 
 }
 
 int runMapStats(const AnalysisOptions& o) {
+  if (o.aimec) return runAimecMapStats(o);
   const DemRaster r = readRaster(o.rasters.at(0));
   DemRaster ground;
   if (!o.ground.empty()) ground = readRaster(o.ground);
@@ -121,6 +115,7 @@ int runMapStats(const AnalysisOptions& o) {
 }
 
 int runCompare(const AnalysisOptions& o) {
+  if (o.aimec) return runAimecCompare(o);
   const DemRaster simRaw = readRaster(o.simulation);
   const DemRaster ref = readRaster(o.reference);
   const DemRaster sim = resample(simRaw, ref.grid);
@@ -289,6 +284,8 @@ AnalysisCommands addAnalysisCommands(CLI::App& app, AnalysisOptions& o) {
   c.compare->add_option("--png", o.png, "Overlap map (PNG) at the first threshold");
   c.compare->add_option("--dem", o.dem, "DEM for the overlap map's hillshade");
   c.compare->add_option("--title", o.title, "Overlap map title");
+
+  addAimecOptions(c.mapStats, c.compare, o);
 
   c.seriesStats = app.add_subcommand("series-stats", "Peaks, time to rest, discharged volumes and front speeds of series.csv");
   c.seriesStats->add_option("series", o.series, "series.csv of a run")->required();

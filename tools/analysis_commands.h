@@ -21,6 +21,12 @@ struct AnalysisOptions {
   std::vector<double> thresholds;
   std::string path, simulation, reference, dem, png;
   double halfWidth = std::numeric_limits<double>::infinity();
+  // AIMEC path analysis (map-stats / compare --aimec): tools/path_commands.cpp
+  bool aimec = false;
+  double domainWidth = 600; ///< AIMEC's domainWidth (m)
+  double cellSL = 0;        ///< (s, l) cell; 0 = the (reference) raster's
+  double runoutAreaAngle = 0; ///< > 0: compare areas only from where the thalweg flattens below this (deg)
+  std::string splitPoint;   ///< "x,y": the run-out area starts after it
   // series-stats
   std::string series;
   double restFraction = 0.01;

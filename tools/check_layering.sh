@@ -13,6 +13,7 @@ declare -A allowed=(
   [io/output]="io/output io/common engine"
   [io/scene]="io/scene io/config io/common io/terrain io/output engine materials"
   [io/run]="io/run io/scene io/output io/common io/config engine"
+  [hazard]="hazard io/scene io/output io/terrain io/common io/config engine"
 )
 bad=0
 for lib in "${!allowed[@]}"; do

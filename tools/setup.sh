@@ -50,7 +50,7 @@ sanitized_checks() {
   # sanitizers; skipping them keeps CI inside its budget.
   ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$san" --output-on-failure -j "$jobs" --timeout 1200 \
-    -E "ColumnCollapse|Heap\.|DamBreak|WaterColumn|SnowSlab|Determinism"
+    -E "ColumnCollapse|Heap\.|DamBreak|WaterColumn|SnowSlab|Determinism|BasalLaws|Rheology"
   # Each reader of user files is fuzzed from its committed seed corpus (tests/fuzz/seeds/<target>/)
   # in a scratch copy: the scene reader for TALUS_FUZZ_SECONDS (90), the others for
   # TALUS_FUZZ_FILE_SECONDS (25) each.

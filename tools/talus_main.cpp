@@ -4,10 +4,12 @@
 #include "io/terrain/dem_raster.h"
 #include "io/run/run_driver.h"
 #include "io/run/run_signals.h"
+#include "io/scene/avaframe_scene.h"
 #include "io/scene/scene.h"
 #include "io/config/toml_reader.h"
 #include "tools/analysis_commands.h"
 #include "tools/benchmark.h"
+#include "tools/ensemble_command.h"
 #include "tools/work_precision.h"
 #include "tools/terrain_command.h"
 
@@ -94,7 +96,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Talus: 3D material point method for alpine mass movements and process cascades"};
   app.require_subcommand(1);
 
-  std::string scene, out;
+  std::string scene, out, avaframe;
   int threads = 0;
   std::vector<std::string> sets;
   bool quiet = false;
@@ -104,12 +106,14 @@ int main(int argc, char** argv) {
   run->add_option("--threads", threads, "Worker threads (default: all)")->check(CLI::PositiveNumber);
   run->add_option("--set", sets, "Override a scene key: --set simulation.dx=0.02");
   run->add_flag("--quiet", quiet, "No progress bar or messages");
+  run->add_option("--avaframe", avaframe, "An AvaFrame avalanche folder (DEM, REL/, ENT/, ...): sets avaframe.directory");
   std::string resume;
   run->add_option("--resume", resume, "Continue the run in DIR from DIR/checkpoint.h5 (same scene)");
 
   auto* check = app.add_subcommand("check", "Validate a scene and report the particles each body seeds");
   check->add_option("scene", scene, "Scene file (TOML)");
   check->add_option("--set", sets, "Override a scene key");
+  check->add_option("--avaframe", avaframe, "An AvaFrame avalanche folder: sets avaframe.directory");
 
   auto* defaults = app.add_subcommand("default-scene", "Print the embedded default scene");
 
@@ -137,17 +141,21 @@ int main(int argc, char** argv) {
   auto* terrainCmd = addTerrainCommand(app, terrainOpt);
   SynthDemOptions synthOpt;
   auto* synthCmd = addSynthDemCommand(app, synthOpt);
+  EnsembleOptions ensembleOpt;
+  auto* ensembleCmd = addEnsembleCommand(app, ensembleOpt);
   AnalysisOptions analysisOpt;
   const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (!avaframe.empty()) sets.push_back(avaFrameOverride(avaframe));
     if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
     if (*benchCmd) return runBenchmarks(bench);
     if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, 8, 0.4, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
+    if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
     if (*defaults) {
       std::cout << defaultSceneText();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace talus {
@@ -148,6 +149,18 @@ std::vector<double> ConfigTable::numbers(const std::string& key) const {
   return out;
 }
 
+std::vector<std::string> ConfigTable::strings(const std::string& key) const {
+  const ConfigValue* v = find(key);
+  if (!v) missing(key);
+  if (!v->isArray()) fail(key, "expected an array of strings, got a " + v->typeName());
+  std::vector<std::string> out;
+  for (const auto& e : std::get<ConfigValue::Array>(v->data)) {
+    if (!e.isString()) fail(key, "expected an array of strings, found a " + e.typeName());
+    out.push_back(std::get<std::string>(e.data));
+  }
+  return out;
+}
+
 Eigen::Vector3d ConfigTable::vec3(const std::string& key) const {
   const auto n = numbers(key);
   if (n.size() != 3)
@@ -251,6 +264,31 @@ void ConfigTable::assign(const std::vector<std::string>& path, ConfigValue v) {
   v.line = 0;
   v.fromCommandLine = true;
   t->values_[path.back()] = std::move(v);
+}
+
+namespace {
+void canonical(const ConfigValue& v, std::string& out) {
+  char buf[40];
+  if (v.isNumber()) std::snprintf(buf, sizeof buf, "%.17g", std::get<double>(v.data)), out += buf;
+  else if (v.isBool()) out += std::get<bool>(v.data) ? "true" : "false";
+  else if (v.isString()) out += "\"" + std::get<std::string>(v.data) + "\"";
+  else if (v.isTable()) out += std::get<std::shared_ptr<ConfigTable>>(v.data)->canonicalText();
+  else {
+    out += "[";
+    for (const auto& e : std::get<ConfigValue::Array>(v.data)) canonical(e, out), out += ",";
+    out += "]";
+  }
+}
+} // namespace
+
+std::string ConfigTable::canonicalText() const {
+  std::string out = "{";
+  for (const auto& [k, v] : values_) { // std::map: sorted keys
+    out += k + "=";
+    canonical(v, out);
+    out += ";";
+  }
+  return out + "}";
 }
 
 int editDistance(const std::string& a, const std::string& b) {

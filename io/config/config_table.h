@@ -70,6 +70,8 @@ public:
   Eigen::Vector3d vec3(const std::string& key) const;
   Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback) const;
   std::vector<double> numbers(const std::string& key) const;
+  /// An array of strings.
+  std::vector<std::string> strings(const std::string& key) const;
   const ConfigTable* table(const std::string& key) const; ///< nullptr when absent
   std::vector<const ConfigTable*> tables(const std::string& key) const; ///< array of tables
 
@@ -80,6 +82,8 @@ public:
   /// Overwrite (or add) a value at a dotted path; used by `--set`.
   void assign(const std::vector<std::string>& path, ConfigValue v);
   const std::map<std::string, ConfigValue>& values() const { return values_; }
+  /// Every value, keys sorted, numbers exact: equal for equal configurations (names a run).
+  std::string canonicalText() const;
 
   /// Missing required key: blames a present key that looks like a typo of it, if any.
   [[noreturn]] void missing(const std::string& key) const;

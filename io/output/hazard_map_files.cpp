@@ -5,6 +5,7 @@
 #include "io/common/geotiff_writer.h"
 #include "io/common/names.h"
 #include "io/output/map_quicklook.h"
+#include "io/output/peak_files.h"
 
 #include <cmath>
 #include <cstdio>
@@ -95,6 +96,17 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
         recordFile(rel + ".png");
       }
     }
+  }
+  if (settings_.peakFiles.enabled) {
+    // The DEM's format, as AvaFrame writes its peak files.
+    const std::string src = dem_ ? fs::path(dem_->sourcePath).extension().string() : "";
+    const std::string format = !settings_.peakFiles.format.empty() ? settings_.peakFiles.format
+                               : src == ".asc" || src == ".ASC" ? "asc" : "tif";
+    for (const auto& f : writePeakFiles(outDir_, settings_.peakFiles, format, grid_,
+                                        {raster(MaxHeightNormal), raster(MaxSpeed), raster(MaxPressure),
+                                         raster(MaxHeightVertical)},
+                                        kNoData))
+      recordFile(f);
   }
 }
 

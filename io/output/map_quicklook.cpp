@@ -76,7 +76,7 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
       if (sn) sh[size_t(r) * w + c] = float(ss / sn);
       vmaxData = std::max(vmaxData, vm);
     }
-  const double vmax = chart::niceCeil(vmaxData);
+  const double vmax = style.scaleMax > 0 ? style.scaleMax : chart::niceCeil(vmaxData);
 
   // The raster as an image: background (hillshade or flat grey) under the colour layer.
   cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
@@ -186,17 +186,19 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
 
   // North arrow (the raster is north-up).
   const double nx = left + mapW - 22, ny = top + 14;
-  cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
-  cairo_arc(cr, nx, ny + 16, 15, 0, 2 * M_PI);
-  cairo_fill(cr);
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_move_to(cr, nx, ny + 4);
-  cairo_line_to(cr, nx + 6, ny + 24);
-  cairo_line_to(cr, nx, ny + 19);
-  cairo_line_to(cr, nx - 6, ny + 24);
-  cairo_close_path(cr);
-  cairo_fill(cr);
-  chart::text(cr, nx, ny + 2, "N", 11, Align::Centre, Align::End, true);
+  if (style.northUp) {
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
+    cairo_arc(cr, nx, ny + 16, 15, 0, 2 * M_PI);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_move_to(cr, nx, ny + 4);
+    cairo_line_to(cr, nx + 6, ny + 24);
+    cairo_line_to(cr, nx, ny + 19);
+    cairo_line_to(cr, nx - 6, ny + 24);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    chart::text(cr, nx, ny + 2, "N", 11, Align::Centre, Align::End, true);
+  }
 
   cairo_destroy(cr);
   try {

@@ -20,6 +20,8 @@ struct QuicklookStyle {
   /// Categorical map instead: value k (1..n) is drawn in classes[k - 1].second, with a legend of
   /// the labels in place of the colour scale (0 shows the background only).
   std::vector<std::pair<std::string, chart::Rgb>> classes;
+  double scaleMax = 0;  ///< top of the colour scale; 0 = a round value above the data's maximum
+  bool northUp = true;  ///< false for grids that are not north-up maps (AIMEC's (s, l)): no north arrow
 };
 
 /// `values` and `heights` (optional, may be empty) cover `grid` row by row (row 0 north).

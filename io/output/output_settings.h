@@ -41,6 +41,16 @@ struct ProbeSpec {
   std::vector<std::string> materials; ///< empty = all
 };
 
+/// AvaFrame peak files (peakFiles/<simName>_pft.asc ...) written from the hazard maps; the name
+/// parts follow AvaFrame's simName (io/output/peak_files.h, docs/hazard.md).
+struct PeakFileSettings {
+  bool enabled = false;
+  std::string format;                  ///< "asc", "tif" or "both"; "" = the DEM's format
+  std::string releaseName = "release"; ///< the release scenario (first release body)
+  std::string simType = "null";        ///< "null" (releases only) or "ent" (with covers)
+  std::string simHash = "0000000000";  ///< 10 hex digits naming the scene's configuration
+};
+
 struct MapSettings {
   bool enabled = false;
   double cellSize = 0;       ///< m, when the scene has no DEM; 0 = two grid cells
@@ -49,6 +59,7 @@ struct MapSettings {
   double minHeight = 0;      ///< speed and pressure count only where flow height >= this (m)
   double interval = 0;       ///< s between accumulations; 0 = every step
   std::vector<std::string> erodible; ///< materials whose lost thickness is erosion depth
+  PeakFileSettings peakFiles;
 };
 
 struct OutputSettings {

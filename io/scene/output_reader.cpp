@@ -37,11 +37,7 @@ std::vector<std::string> readMaterialList(const ConfigTable& t, const std::strin
                                           const std::vector<std::string>& materialNames) {
   std::vector<std::string> out;
   if (!t.has(key)) return out;
-  const ConfigValue& v = t.values().at(key);
-  if (!v.isArray()) t.fail(key, "expected an array of material names");
-  for (const auto& e : std::get<ConfigValue::Array>(v.data)) {
-    if (!e.isString()) t.fail(key, "expected an array of material names");
-    const std::string& n = std::get<std::string>(e.data);
+  for (const std::string& n : t.strings(key)) {
     if (std::find(materialNames.begin(), materialNames.end(), n) == materialNames.end()) {
       std::string list;
       for (const auto& m : materialNames) list += (list.empty() ? "" : ", ") + m;
@@ -106,6 +102,10 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   s.loads = out->boolean("loads", s.loads);
   s.waterMaterials = readMaterialList(*out, "water_materials", materialNames);
   readMaps(*out, materialNames, s.maps);
+  s.maps.peakFiles.enabled = out->boolean("peak_files", false);
+  if (out->has("peak_file_format")) s.maps.peakFiles.format = out->choice("peak_file_format", "", {"asc", "tif", "both"});
+  if (s.maps.peakFiles.enabled && !s.maps.enabled)
+    out->fail("peak_files", "AvaFrame peak files are written from the hazard maps: they need maps = true");
 
   std::vector<std::string> used;
   const auto sections = out->tables("sections");

@@ -7,6 +7,7 @@
 #include "io/terrain/terrain_bodies.h"
 #include "io/terrain/terrain_loader.h"
 #include "io/config/toml_reader.h"
+#include "io/scene/avaframe_scene.h"
 #include "io/scene/contact_law_table.h"
 #include "io/scene/model_table.h"
 #include "io/scene/structure_reader.h"
@@ -32,6 +33,24 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
   s.settings.damping = sim->positive("damping", 0, true);
   s.maxParticles = std::min(sim->positive("max_particles", 2e9), resourceLimits().maxParticles);
+}
+
+/// `periodic = ["x", "y"]`: those axes wrap around; their extent must be whole 8-node blocks.
+void readPeriodic(const ConfigTable& dom, SceneSetup& s) {
+  for (const std::string& a : dom.strings("periodic")) {
+    if (a != "x" && a != "y" && a != "z") dom.fail("periodic", "'" + a + "' is not an axis (x, y or z)");
+    const int d = a[0] - 'x';
+    const double dx = s.settings.dx, lo = s.settings.domain.min[d] / dx;
+    const double n = (s.settings.domain.max[d] - s.settings.domain.min[d]) / dx;
+    if (std::abs(lo - std::round(lo)) > 1e-6 || std::abs(n - std::round(n)) > 1e-6 || std::lround(n) % kBlockDim != 0)
+      dom.fail("periodic", "a periodic " + a + " axis needs domain.min on a grid node and an extent of a multiple of 8 dx (" +
+                               std::to_string(8 * dx) + " m); the domain spans " + std::to_string(n) + " cells");
+    for (int side = 0; side < 2; ++side)
+      if (dom.has(faceNames()[size_t(2 * d + side)]))
+        dom.fail(faceNames()[size_t(2 * d + side)], "the " + a + " axis is periodic: its faces have no law");
+    s.settings.periodic[size_t(d)] = true;
+    s.settings.faces[size_t(2 * d)] = s.settings.faces[size_t(2 * d + 1)] = nullptr;
+  }
 }
 
 /// `[domain]` may be omitted (or give only walls/origin) for a DEM terrain: the box then spans
@@ -75,6 +94,7 @@ void readDomain(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     const auto walls = readContactLaw(*dom, "walls", "slip", "wall_", true);
     for (size_t f = 0; f < 6; ++f)
       s.settings.faces[f] = dom->has(faceNames()[f]) ? readContactLaw(*dom, faceNames()[f], "", "wall_", true) : walls;
+    if (dom->has("periodic")) readPeriodic(*dom, s);
   }
 }
 
@@ -139,6 +159,9 @@ void readMaterials(const ConfigTable& root, SceneSetup& s) {
   if (tables.empty()) root.fail("", "no [[materials]] given");
   for (size_t i = 0; i < tables.size(); ++i) {
     auto g = createMaterialGroup(*tables[i], int(i));
+    // `basal = "sticky"` or `basal = { law = "coulomb", friction = 0.3 }`: this material's own law
+    // at every collider (a string takes its parameters from basal_friction, ...).
+    if (tables[i]->has("basal")) g->basalLaw = readContactLaw(*tables[i], "basal", "", "basal_", false);
     for (const auto& n : s.materialNames)
       if (n == g->name()) tables[i]->fail("name", "duplicate material name '" + n + "'");
     s.materialNames.push_back(g->name());
@@ -235,6 +258,22 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
 
 void readOutput(const ConfigTable& root, SceneSetup& s) {
   s.output = readOutputSettings(root.table("output"), s.materialNames);
+  // AvaFrame's simName parts: the release scenario, releases only or with covers, and a hash of
+  // the whole configuration (AvaFrame hashes its configuration too), so runs differing in any
+  // value have different names.
+  PeakFileSettings& pf = s.output.maps.peakFiles;
+  for (const auto& b : s.bodies)
+    if (b.kind == "release") {
+      pf.releaseName = b.label;
+      break;
+    }
+  for (const auto& b : s.bodies)
+    if (b.kind == "layer") pf.simType = "ent";
+  uint64_t h = 1469598103934665603ull; // FNV-1a
+  for (unsigned char c : root.canonicalText()) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  pf.simHash = std::string(hex).substr(0, 10);
 }
 
 } // namespace
@@ -255,6 +294,8 @@ SceneSetup buildScene(const ConfigTable& root) {
   readStructures(root, s.settings, s.notes);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
   readOutput(root, s);
+  s.ensemble = readEnsembleSettings(root.table("ensemble"),
+                                    s.output.paths.empty() ? std::vector<Eigen::Vector2d>{} : s.output.paths[0].points);
   root.checkAllUsed();
   return s;
 }
@@ -288,22 +329,29 @@ std::string sceneHash(const std::string& text, const std::vector<std::string>& o
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return hex;
 }
+
+/// Overrides first, so `--set avaframe.release_thickness=2` reaches the AvaFrame folder's bodies.
+SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) applyOverride(root, o);
+  std::vector<std::string> notes;
+  expandAvaFrame(root, notes);
+  SceneSetup s = buildScene(root);
+  s.notes.insert(s.notes.begin(), notes.begin(), notes.end());
+  return s;
+}
 } // namespace
 
 SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
   std::string text;
   auto root = readTomlFile(path, &text);
-  for (const auto& o : overrides) applyOverride(*root, o);
-  SceneSetup s = buildScene(*root);
+  SceneSetup s = build(*root, overrides);
   s.hash = sceneHash(text, overrides);
   return s;
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides) {
-  auto root = readTomlString(text, name);
-  for (const auto& o : overrides) applyOverride(*root, o);
-  SceneSetup s = buildScene(*root);
+  SceneSetup s = build(*readTomlString(text, name), overrides);
   s.hash = sceneHash(text, overrides);
   return s;
 }

@@ -5,6 +5,7 @@
 #include "engine/simulation.h"
 #include "io/output/run_context.h"
 #include "io/scene/body_seeding.h"
+#include "io/scene/ensemble_settings.h"
 #include "io/scene/output_reader.h"
 #include "io/common/raster_grid.h"
 
@@ -24,6 +25,7 @@ struct SceneSetup {
   double maxParticles = 2e9; ///< [simulation] max_particles, capped by resourceLimits()
   OutputSettings output;
   std::vector<BodyReport> bodies;
+  EnsembleSettings ensemble; ///< [ensemble]: used by `talus ensemble` only
   /// The DEM the terrain was built from, when it was built from one (maps use its grid and CRS):
   /// the ground as simulated, i.e. after smoothing, with releases from a post-event DEM carved
   /// out and fixed layers added.

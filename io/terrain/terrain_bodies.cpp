@@ -70,7 +70,7 @@ TerrainBody::TerrainBody(const ConfigTable& t, const std::string& kind, const De
   }
 
   auto readThickness = [&](bool allowAttribute) {
-    if (attr && !allowAttribute) t.fail("thickness_attribute", "only a release polygon takes its thickness from an attribute");
+    if (attr && !allowAttribute) t.fail("thickness_attribute", "only a release or layer polygon takes its thickness from an attribute");
     if (attr && !t.has("polygon")) t.fail("thickness_attribute", "needs a 'polygon' whose features carry the attribute");
     if (attr && t.has("thickness")) t.fail("thickness", "give either 'thickness' or 'thickness_attribute', not both");
     if (attr) {
@@ -141,7 +141,7 @@ TerrainBody::TerrainBody(const ConfigTable& t, const std::string& kind, const De
     }
     break;
   case Kind::Layer:
-    readThickness(false);
+    readThickness(true); // per-feature covers: AvaFrame's ENT/ thickness attribute
     if (!region_) wholeDomain();
     maxSlope_ = t.inRange("max_slope", 90, 0, 90);
     minElevation_ = t.number("min_elevation", -INFINITY);

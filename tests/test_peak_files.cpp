@@ -1,0 +1,171 @@
+// AvaFrame peak files (io/output/peak_files): written from the hazard maps under AvaFrame's names,
+// read back with GDAL, on the DEM's grid.
+#include "io/output/peak_files.h"
+#include "io/run/run_driver.h"
+#include "io/scene/avaframe_scene.h"
+#include "io/scene/scene.h"
+#include "terrain_test_support.h"
+#include "tools/analysis.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <regex>
+#include <sstream>
+
+using namespace talus;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kScene = R"(
+[simulation]
+dx = 8.0
+end_time = 1.0
+[terrain]
+synthetic = { kind = "slope_valley", cell_size = 20.0 }
+friction = 0.3
+[domain]
+walls = "open"
+[[materials]]
+name = "snow"
+preset = "snow"
+[[bodies]]
+name = "slab"
+kind = "release"
+material = "snow"
+bounds = [2600250.0, 1200350.0, 2600400.0, 1200450.0]
+thickness = 3.0
+[output]
+maps = true
+peak_files = true
+peak_file_format = "both"
+)";
+
+std::string runScene(const std::string& name, const std::vector<std::string>& sets, SceneSetup* keep = nullptr) {
+  test::useTestTerrainCache();
+  SceneSetup s = loadSceneString(kScene, "peak.toml", sets);
+  if (keep) {
+    keep->dem = s.dem;
+    keep->output = s.output;
+  }
+  RunOptions o;
+  o.outDir = test::tempDir(name);
+  o.progress = false;
+  EXPECT_TRUE(runScene(std::move(s), o).ok);
+  return o.outDir;
+}
+
+std::vector<std::string> peakFiles(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir + "/peakFiles")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+} // namespace
+
+TEST(PeakFiles, NamedLaidOutAndValuedAsAvaFrameReadsThem) {
+  SceneSetup s;
+  const std::string dir = runScene("peak_files", {}, &s);
+  const auto names = peakFiles(dir);
+  // Four result types in two formats, plus the .prj of each ASCII grid.
+  ASSERT_EQ(names.size(), 12u);
+  const std::regex pattern("slab_([0-9a-f]{10})_C_L_null_mpm_(pft|pfv|ppr|pfd)\\.(asc|tif|prj)");
+  std::string hash;
+  for (const auto& n : names) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(n, m, pattern)) << n;
+    if (hash.empty()) hash = m[1];
+    EXPECT_EQ(m[1], hash) << "one simHash per run";
+  }
+  // Each is its hazard map, on the DEM's grid: ASCII keeps 9 significant digits (float32 exact
+  // to rounding, 1e-6 relative); the GeoTIFF is bit-identical.
+  const std::pair<const char*, const char*> pairs[] = {{"pft", "max_flow_height_slope_normal"},
+                                                       {"pfv", "max_speed"},
+                                                       {"ppr", "max_pressure"},
+                                                       {"pfd", "max_flow_height_vertical"}};
+  const RasterGrid& g = s.dem->grid;
+  for (const auto& [type, map] : pairs) {
+    const DemRaster ref = analysis::readRaster(dir + "/maps/" + map + ".tif");
+    double peak = 0;
+    for (const char* ext : {".asc", ".tif"}) {
+      const std::string file = dir + "/peakFiles/slab_" + hash + "_C_L_null_mpm_" + type + ext;
+      const DemRaster r = analysis::readRaster(file);
+      EXPECT_EQ(r.grid.nx, g.nx) << file;
+      EXPECT_EQ(r.grid.ny, g.ny) << file;
+      EXPECT_NEAR(r.grid.originX, g.originX, 1e-6) << file;
+      EXPECT_NEAR(r.grid.originY, g.originY, 1e-6) << file;
+      EXPECT_NEAR(r.grid.cellSize, g.cellSize, 1e-9) << file;
+      EXPECT_TRUE(sameCrs(r.grid.crsWkt, g.crsWkt) && !r.grid.crsWkt.empty()) << file;
+      ASSERT_EQ(r.height.size(), ref.height.size());
+      for (size_t i = 0; i < r.height.size(); ++i) {
+        if (std::isnan(ref.height[i])) {
+          EXPECT_TRUE(std::isnan(r.height[i]));
+          continue;
+        }
+        EXPECT_NEAR(r.height[i], ref.height[i], 1e-6 * std::max(1.0f, std::abs(ref.height[i]))) << file << " cell " << i;
+        peak = std::max(peak, double(r.height[i]));
+      }
+    }
+    EXPECT_GT(peak, 0) << type << ": the map holds the release at least";
+  }
+  // The header AvaFrame writes: ncols, nrows, xllcorner (the west edge), cellsize, NODATA_value.
+  std::ifstream asc(dir + "/peakFiles/slab_" + hash + "_C_L_null_mpm_pft.asc");
+  std::string key;
+  double v;
+  asc >> key >> v;
+  EXPECT_EQ(key, "ncols");
+  EXPECT_EQ(v, g.nx);
+  asc >> key >> v >> key >> v;
+  EXPECT_EQ(key, "xllcorner");
+  EXPECT_NEAR(v, g.originX, 1e-6);
+}
+
+TEST(PeakFiles, TheSimNameFollowsAvaFrameAndTheHashTheConfiguration) {
+  PeakFileSettings p;
+  p.releaseName = "rock slab";
+  p.simHash = "0123456789";
+  p.simType = "ent";
+  // An underscore in the release name gets AvaFrame's "_AF", where its parser splits the name.
+  EXPECT_EQ(avaFrameSimName(p), "rock_slab_AF_0123456789_C_L_ent_mpm");
+  test::useTestTerrainCache();
+  const auto hash = [](const std::vector<std::string>& sets) {
+    return loadSceneString(kScene, "peak.toml", sets).output.maps.peakFiles.simHash;
+  };
+  EXPECT_EQ(hash({}), hash({}));
+  EXPECT_NE(hash({}), hash({"terrain.friction=0.31"}));
+  EXPECT_EQ(hash({}).size(), 10u);
+}
+
+TEST(PeakFiles, AnAvaFrameRunWritesOnTheDemGridInTheDemFormat) {
+  if (test::sharedDir().empty()) GTEST_SKIP() << "../shared (AvaFrame avaWog data) not found";
+  test::useTestTerrainCache();
+  const std::string scene = R"(
+[simulation]
+dx = 12.0
+end_time = 0.3
+[terrain]
+friction = 0.155
+[[materials]]
+name = "snow"
+preset = "snow"
+)";
+  SceneSetup s = loadSceneString(scene, "wog.toml", {avaFrameOverride(test::sharedDir() + "/data/avaframe_avaWog")});
+  RunOptions o;
+  o.outDir = test::tempDir("peak_files_wog");
+  o.progress = false;
+  ASSERT_TRUE(runScene(std::move(s), o).ok);
+  std::string pft;
+  for (const auto& n : peakFiles(o.outDir))
+    if (n.size() > 8 && n.substr(n.size() - 8) == "_pft.asc") pft = n;
+  ASSERT_FALSE(pft.empty()) << "an .asc DEM gives .asc peak files";
+  EXPECT_EQ(pft.rfind("relWog_", 0), 0u) << pft;
+  // The DEM: 490 x 555 cells of 4.997678230579 m, xllcenter 167455.348391387.
+  const DemRaster r = analysis::readRaster(o.outDir + "/peakFiles/" + pft);
+  EXPECT_EQ(r.grid.nx, 490);
+  EXPECT_EQ(r.grid.ny, 555);
+  EXPECT_NEAR(r.grid.originX, 167455.348391387 - 4.997678230579 / 2, 1e-6);
+  EXPECT_NEAR(r.grid.cellSize, 4.997678230579, 1e-9);
+}
