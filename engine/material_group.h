@@ -88,9 +88,16 @@ public:
     a.getVector(prefix + "tau", particles.tau);
     a.getVector(prefix + "mass", particles.mass);
     loadState(a, prefix);
+    // Every per-particle array must have one entry per particle, or the next step reads past one.
+    const size_t n = particles.x.size();
+    if (particles.v.size() != n || particles.C.size() != n || particles.tau.size() != n ||
+        particles.mass.size() != n || stateSize() != n)
+      throw std::runtime_error(prefix + ": per-particle arrays of different lengths");
   }
   virtual void saveState(StateArchive& a, const std::string& prefix) const = 0;
   virtual void loadState(const StateArchive& a, const std::string& prefix) = 0;
+  /// Particles the model state holds (per array; -1 when its arrays disagree).
+  virtual size_t stateSize() const = 0;
 
   /// Optional per-particle scalar outputs of the model (e.g. plastic strain, pressure).
   virtual std::vector<std::string> scalarNames() const { return {}; }

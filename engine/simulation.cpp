@@ -362,6 +362,19 @@ void Simulation::load(const StateArchive& a) {
   maxSpeed_ = a.getValue<double>("max_speed");
   initialMass_ = a.getValue<double>("initial_mass");
   a.getVector("mass_removed", massRemoved_);
+  if (massRemoved_.size() != groupPtrs_.size()) throw std::runtime_error("mass ledger does not fit the materials");
+  // A run only ever holds particles inside the domain (culling keeps them there) with positive
+  // mass; binning a position far outside would overflow the block coordinates.
+  const Vec3d lo = settings_.domain.min - Vec3d::Constant(settings_.dx), hi = settings_.domain.max + Vec3d::Constant(settings_.dx);
+  for (const MaterialGroup* g : groupPtrs_)
+    for (size_t p = 0; p < g->size(); ++p) {
+      const Vec3d x = g->particles.x[p].cast<double>();
+      if (!((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) || !(g->particles.mass[p] > 0) ||
+          !std::isfinite(g->particles.mass[p]))
+        throw std::runtime_error("particle " + std::to_string(p) + " of '" + g->name() +
+                                 "' lies outside the domain or has no mass");
+    }
+  if (!(time_ >= 0) || !std::isfinite(time_)) throw std::runtime_error("the clock is not a finite time");
 }
 
 } // namespace talus

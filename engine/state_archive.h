@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@ public:
     put(name, v.data(), v.size() * sizeof(T));
   }
   template <class T> void getVector(const std::string& name, std::vector<T>& v) const {
-    v.resize(size(name) / sizeof(T));
+    const size_t bytes = size(name);
+    if (bytes % sizeof(T) != 0) throw std::runtime_error("entry '" + name + "' is not a whole number of elements");
+    v.resize(bytes / sizeof(T));
     get(name, v.data(), v.size() * sizeof(T));
   }
   template <class T> void putValue(const std::string& name, const T& v) { put(name, &v, sizeof(T)); }

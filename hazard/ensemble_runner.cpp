@@ -43,12 +43,20 @@ std::string clock(double seconds) {
 
 } // namespace
 
+bool memberInterrupted(const std::string& dir) {
+  const fs::path summary = fs::path(dir) / "summary.json";
+  return fs::exists(summary) && readFile(summary).find("\"status\": \"interrupted\"") != std::string::npos;
+}
+
 MemberState memberState(const std::string& dir) {
   const fs::path summary = fs::path(dir) / "summary.json";
+  const bool checkpoint = fs::exists(fs::path(dir) / "checkpoint.h5");
+  // SIGINT/SIGTERM (Ctrl-C reaches every member) leave "interrupted" and a checkpoint: resumable.
+  if (memberInterrupted(dir)) return checkpoint ? MemberState::Partial : MemberState::Failed;
   if (fs::exists(summary))
     return readFile(summary).find("\"status\": \"completed\"") != std::string::npos ? MemberState::Completed
                                                                                     : MemberState::Failed;
-  return fs::exists(fs::path(dir) / "checkpoint.h5") ? MemberState::Partial : MemberState::Missing;
+  return checkpoint ? MemberState::Partial : MemberState::Missing;
 }
 
 double memberWallSeconds(const std::string& dir) {
@@ -107,7 +115,7 @@ std::pair<size_t, int> ProcessLauncher::waitAny() {
 
 RunReport runMembers(const std::vector<MemberJob>& jobs,
                      const std::function<std::vector<std::string>(const MemberJob&)>& resumeArgs, size_t concurrent,
-                     Launcher& launcher, FILE* progress) {
+                     Launcher& launcher, FILE* progress, const std::function<bool()>& stop) {
   RunReport rep;
   const auto t0 = std::chrono::steady_clock::now();
   const bool tty = progress && isatty(fileno(progress));
@@ -140,8 +148,9 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     std::fflush(progress);
   };
   bar();
-  while (next < todo.size() || running > 0) {
-    while (next < todo.size() && running < concurrent) {
+  auto stopping = [&] { return stop && stop(); };
+  while ((next < todo.size() && !stopping()) || running > 0) {
+    while (next < todo.size() && running < concurrent && !stopping()) {
       const MemberJob& j = *todo[next++];
       MemberJob run = j;
       if (memberState(j.dir) == MemberState::Partial) {
@@ -155,6 +164,7 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
       ++running;
       bar();
     }
+    if (running == 0) break; // stopped before another member started
     const auto [m, code] = launcher.waitAny();
     --running, ++ran;
     const MemberJob* j = nullptr;
@@ -166,8 +176,9 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     if (ok) ++rep.completed;
     else ++rep.failed;
     if (!ok && std::find(resumedNow.begin(), resumedNow.end(), m) != resumedNow.end() &&
-        memberState(j->dir) == MemberState::Partial) {
-      // Its checkpoint did not take it to the end: the next re-run starts it anew instead.
+        memberState(j->dir) == MemberState::Partial && !memberInterrupted(j->dir)) {
+      // Its checkpoint did not take it to the end (and no signal stopped it): the next re-run
+      // starts it anew instead.
       std::error_code ec;
       fs::remove(fs::path(j->dir) / "checkpoint.h5", ec);
     }
@@ -182,6 +193,7 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
     bar();
   }
   if (tty) std::fprintf(progress, "\n");
+  rep.stopped = stopping();
   rep.wallSeconds = elapsed();
   return rep;
 }

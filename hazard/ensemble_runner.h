@@ -17,9 +17,12 @@ namespace talus::ensemble {
 
 enum class MemberState { Missing, Partial, Failed, Completed };
 
-/// From DIR/member_NNN: summary.json with status "completed" (Completed) or another status
-/// (Failed); no summary but a checkpoint (Partial: killed); else Missing.
+/// From DIR/member_NNN: summary.json with status "completed" (Completed), "interrupted" with a
+/// checkpoint (Partial: stopped by SIGINT/SIGTERM) or another status (Failed); no summary but a
+/// checkpoint (Partial: killed); else Missing.
 MemberState memberState(const std::string& memberDir);
+/// summary.json says "interrupted" (a member stopped by SIGINT or SIGTERM).
+bool memberInterrupted(const std::string& memberDir);
 /// wall_seconds from summary.json (NaN when absent).
 double memberWallSeconds(const std::string& memberDir);
 
@@ -53,13 +56,16 @@ private:
 struct RunReport {
   size_t completed = 0, failed = 0, skipped = 0, resumed = 0;
   double wallSeconds = 0;
+  bool stopped = false; ///< `stop` answered true: members were left to run
 };
 
 /// Runs the jobs, `concurrent` at a time (>= 1); a member already completed is skipped, a killed
 /// one resumed (`resumeArgs(job)` gives its command line). Progress counts members: a line on
-/// a terminal, else one line per member ending. Returns the counts.
+/// a terminal, else one line per member ending. Once `stop` (when given) answers true, no member
+/// is started and the running ones are waited for (a SIGINT from the terminal or a batch system's
+/// SIGTERM reaches them too: they stop at a checkpoint). Returns the counts.
 RunReport runMembers(const std::vector<MemberJob>& jobs, const std::function<std::vector<std::string>(const MemberJob&)>& resumeArgs,
-                     size_t concurrent, Launcher& launcher, FILE* progress);
+                     size_t concurrent, Launcher& launcher, FILE* progress, const std::function<bool()>& stop = {});
 
 /// The path of the running program (/proc/self/exe).
 std::string selfProgram();

@@ -76,6 +76,7 @@ public:
     a.getVector(prefix + "dJ", dJ);
     minJ_ = a.getValue<float>(prefix + "minJ");
   }
+  size_t stateSize() const override { return dJ.size(); }
 
   void permuteState(const std::vector<uint32_t>& perm) override { gatherInPlace(dJ, perm); }
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }

@@ -37,6 +37,7 @@ public:
     a.getVector(prefix + "F", F);
     a.getVector(prefix + "state", state);
   }
+  size_t stateSize() const override { return F.size() == state.size() ? F.size() : size_t(-1); }
 
   void permuteState(const std::vector<uint32_t>& perm) override {
     gatherInPlace(F, perm);

@@ -57,6 +57,9 @@ min = [0.3, 0.3, 1.0]
 max = [0.6, 0.6, 1.3]
 )";
 
+// The scene hash is checked separately (CheckpointFile tests); these use one fixed identity.
+const CheckpointIdentity kId{"0123456789abcdef"};
+
 std::vector<char> snapshot(const Simulation& sim) {
   std::vector<char> bytes;
   auto append = [&](const auto& v) {
@@ -82,12 +85,12 @@ TEST(Checkpoint, ResumedRunEndsBitIdenticalToUninterrupted) {
 
   auto first = test::makeSimulation(kMixed);
   for (int i = 0; i < 60; ++i) first->step();
-  writeCheckpoint(checkpointPath(dir), *first, [](StateArchive& a) { a.putValue("next_frame", int32_t(7)); });
+  writeCheckpoint(checkpointPath(dir), *first, kId, [](StateArchive& a) { a.putValue("next_frame", int32_t(7)); });
   first.reset(); // the "killed" run
 
   auto resumed = test::makeSimulation(kMixed);
   int frame = 0;
-  readCheckpoint(checkpointPath(dir), *resumed, [&](const StateArchive& a) { frame = a.getValue<int32_t>("next_frame"); });
+  readCheckpoint(checkpointPath(dir), *resumed, kId, [&](const StateArchive& a) { frame = a.getValue<int32_t>("next_frame"); });
   EXPECT_EQ(frame, 7);
   EXPECT_EQ(resumed->steps(), 60u);
   for (int i = 0; i < 90; ++i) resumed->step();
@@ -102,29 +105,29 @@ TEST(Checkpoint, MismatchedSceneAndMissingFileAreRefusedWithTheFileName) {
   const std::string dir = test::tempDir("checkpoint_mismatch");
   auto sim = test::makeSimulation(kMixed);
   sim->step();
-  writeCheckpoint(checkpointPath(dir), *sim);
+  writeCheckpoint(checkpointPath(dir), *sim, kId);
   std::string other = kMixed;
   other.replace(other.find("name = \"snow\""), 13, "name = \"firn\"");
   other.replace(other.find("material = \"snow\""), 17, "material = \"firn\"");
   auto wrong = test::makeSimulation(other);
   try {
-    readCheckpoint(checkpointPath(dir), *wrong);
+    readCheckpoint(checkpointPath(dir), *wrong, kId);
     FAIL() << "a checkpoint of another scene was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("checkpoint.h5"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("firn"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(readCheckpoint(dir + "/nothing/checkpoint.h5", *wrong), std::runtime_error);
+  EXPECT_THROW(readCheckpoint(dir + "/nothing/checkpoint.h5", *wrong, kId), InputError);
 }
 
 TEST(Checkpoint, AnInterruptedWriteLeavesThePreviousCheckpointReadable) {
   const std::string dir = test::tempDir("checkpoint_atomic");
   auto sim = test::makeSimulation(kMixed);
   sim->step();
-  writeCheckpoint(checkpointPath(dir), *sim);
+  writeCheckpoint(checkpointPath(dir), *sim, kId);
   // A writer killed mid-way leaves only a truncated temporary file behind.
   { std::ofstream(checkpointPath(dir) + ".tmp") << "truncated"; }
   auto again = test::makeSimulation(kMixed);
-  readCheckpoint(checkpointPath(dir), *again);
+  readCheckpoint(checkpointPath(dir), *again, kId);
   EXPECT_EQ(again->steps(), 1u);
 }

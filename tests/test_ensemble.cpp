@@ -4,6 +4,7 @@
 #include "hazard/ensemble_aggregate.h"
 #include "hazard/ensemble_plan.h"
 #include "hazard/ensemble_runner.h"
+#include "process_support.h"
 #include "terrain_test_support.h"
 #include "tools/analysis.h"
 
@@ -301,4 +302,44 @@ TEST(Ensemble, ARerunKeepsCompletedMembersAndResumesAKilledOne) {
     if (std::isfinite(b.height[c])) {
       EXPECT_EQ(a.height[c], b.height[c]) << c;
     }
+}
+
+TEST(Ensemble, AMemberStoppedBySigintOrSigtermIsResumedNotRunAnew) {
+  // Ctrl-C reaches every member: each writes a checkpoint and summary.json "interrupted".
+  const std::string dir = test::tempDir("ensemble_states");
+  auto member = [&](const std::string& name, const std::string& status, bool checkpoint) {
+    const std::string d = dir + "/" + name;
+    fs::create_directories(d);
+    if (!status.empty()) std::ofstream(d + "/summary.json") << "{\n  \"status\": \"" << status << "\",\n}\n";
+    if (checkpoint) std::ofstream(d + "/checkpoint.h5") << "x";
+    return d;
+  };
+  EXPECT_EQ(memberState(member("interrupted", "interrupted", true)), MemberState::Partial);
+  EXPECT_TRUE(memberInterrupted(dir + "/interrupted"));
+  EXPECT_EQ(memberState(member("interrupted_no_checkpoint", "interrupted", false)), MemberState::Failed);
+  EXPECT_EQ(memberState(member("write_failure", "failed: cannot write x: No space left on device", true)),
+            MemberState::Failed);
+  EXPECT_EQ(memberState(member("killed", "", true)), MemberState::Partial);
+  EXPECT_FALSE(memberInterrupted(dir + "/killed"));
+  EXPECT_EQ(memberState(member("done", "completed", true)), MemberState::Completed);
+  EXPECT_EQ(memberState(member("missing", "", false)), MemberState::Missing);
+}
+
+TEST(Ensemble, SigtermStartsNoMoreMembersAndSaysHowToContinue) {
+  // A batch system's `kill PID` reaches the ensemble only: its running member goes on to its end,
+  // no other starts, and the ensemble exits 143 saying that a re-run continues.
+  test::useTestTerrainCache();
+  const std::string dir = test::tempDir("ensemble_sigterm"), ens = dir + "/ens";
+  const std::string scene = writeScene(dir, 5.0);
+  test::TalusProcess p({"ensemble", scene, "--vary", "terrain.friction=0.25:0.35", "--samples", "3", "--jobs", "1",
+                        "--out", ens},
+                       dir + "/log");
+  ASSERT_TRUE(p.waitForFile(ens + "/member_000/checkpoint.h5"));
+  p.signal(SIGTERM);
+  const test::Exit e = p.wait();
+  EXPECT_EQ(e.code, 143) << e.log;
+  EXPECT_NE(e.log.find("interrupted by SIGTERM; 1 of 3 members completed; run the same command again"),
+            std::string::npos) << e.log;
+  EXPECT_EQ(memberState(ens + "/member_000"), MemberState::Completed);
+  EXPECT_EQ(memberState(ens + "/member_001"), MemberState::Missing);
 }

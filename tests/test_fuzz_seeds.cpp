@@ -11,7 +11,7 @@
 using namespace talus;
 
 TEST(FuzzSeeds, SeedScenesLoadAndTheirMutilationsFailCleanly) {
-  const auto dir = std::filesystem::path(TALUS_SOURCE_DIR) / "tests" / "fuzz" / "seeds";
+  const auto dir = std::filesystem::path(TALUS_SOURCE_DIR) / "tests" / "fuzz" / "seeds" / "scene";
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     std::ifstream in(entry.path());

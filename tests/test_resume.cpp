@@ -108,11 +108,23 @@ TEST(Resume, KilledAfterACheckpointAndResumedEqualsAnUninterruptedRun) {
   // The final particles: compare the datasets, not the file bytes (HDF5 headers hold no time,
   // but be robust to library layout choices).
   EXPECT_TRUE(slurp(dir + "/straight/particles.h5") == slurp(dir + "/killed/particles.h5"));
+  // summary.json names every file, those written before the kill too (the soak test found the
+  // resumed run listing only its own frames).
+  auto fileLists = [](const std::string& summary) {
+    std::istringstream in(summary);
+    std::string line, lists;
+    while (std::getline(in, line))
+      if (line.find("\"files\"") != std::string::npos) lists += line.substr(line.find("\"files\"")) + "\n";
+    return lists;
+  };
+  const std::string lists = fileLists(slurp(dir + "/straight/summary.json"));
+  EXPECT_NE(lists.find("frames/particles_00000.h5"), std::string::npos) << lists;
+  EXPECT_EQ(fileLists(slurp(dir + "/killed/summary.json")), lists);
 }
 
 TEST(Resume, ResumingWithoutACheckpointIsAClearError) {
   const std::string dir = test::tempDir("resume_missing");
   const std::string scene = dir + "/scene.toml";
   std::ofstream(scene) << kScene;
-  EXPECT_EQ(run(scene + " --resume " + dir + "/nowhere"), 1);
+  EXPECT_EQ(run(scene + " --resume " + dir + "/nowhere"), 2);
 }

@@ -145,3 +145,22 @@ TEST(TerrainDem, SmoothingSkipsNodataCells) {
     EXPECT_NEAR(h, plane(p.grid.cellCentreX(10), p.grid.cellCentreY(r)), 4.5);
   }
 }
+
+TEST(TerrainDem, HolesOutOfTheFillRadiusAreRefusedQuicklyAndLeaveNoWorkFiles) {
+  // A long thin DEM with data only at one end: the far holes are beyond the search radius.
+  // (A fuzzer input of this shape took minutes and left GeoTIFF work files in the current folder.)
+  const std::string dir = test::tempDir("dem_far_holes");
+  const int ny = kMaxFillCells + 200;
+  DemRaster d = test::makeDem(3, ny, 1, 2600000, 1200000, plane);
+  for (int r = 0; r < ny - 5; ++r)
+    for (int c = 0; c < 3; ++c) d.height[d.grid.index(c, r)] = NAN;
+  writeDemGeoTiff(d, dir + "/far.tif");
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  DemReadOptions fill;
+  fill.fillNodata = true;
+  expectDemError(dir + "/far.tif", "cannot be filled; crop the DEM", fill);
+  std::filesystem::current_path(cwd);
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename(), "far.tif") << "left behind: " << e.path();
+}

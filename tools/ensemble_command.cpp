@@ -4,6 +4,7 @@
 #include "hazard/ensemble_plan.h"
 #include "hazard/ensemble_runner.h"
 #include "io/common/input_error.h"
+#include "io/run/run_signals.h"
 #include "io/scene/avaframe_scene.h"
 #include "io/scene/scene.h"
 
@@ -105,7 +106,11 @@ int runEnsembleCommand(const EnsembleOptions& o) {
     members.push_back(j);
   }
   RunReport run;
+  int stoppedBy = 0;
   if (!o.aggregateOnly) {
+    // SIGINT/SIGTERM: start no more members and wait for the running ones, which got the signal
+    // too (the terminal's process group, a batch job's processes) and stop at a checkpoint.
+    RunSignals signals(/*announce=*/false);
     ProcessLauncher launcher(selfProgram());
     run = runMembers(
         members,
@@ -115,7 +120,13 @@ int runEnsembleCommand(const EnsembleOptions& o) {
             if (r.args[i] == "--out") r.args[i] = "--resume";
           return r.args;
         },
-        size_t(jobs), launcher, stderr);
+        size_t(jobs), launcher, stderr, [] { return stopSignalReceived() != 0; });
+    stoppedBy = run.stopped ? stopSignalReceived() : 0;
+  }
+  if (stoppedBy) {
+    std::fprintf(stderr, "talus ensemble: interrupted by %s; %zu of %zu members completed; run the same command again "
+                 "to resume the others from their checkpoints\n", signalName(stoppedBy).c_str(), run.completed, members.size());
+    return 128 + stoppedBy;
   }
   const AggregateReport agg = aggregate(dir.string(), plan, scene.ensemble, scene.dem);
   size_t completed = 0;

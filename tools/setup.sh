@@ -3,7 +3,7 @@
 # embedded default scene (`demo`, the default) or the test suite (`test`).
 #   bash tools/setup.sh          # install, build, run the default scene into ./talus_out
 #   bash tools/setup.sh test     # install, build, run the tests, then the sanitized tests and the
-#                                # scene-reader fuzzer (what CI runs)
+#                                # fuzzers of the file readers (what CI runs)
 #   bash tools/setup.sh quick    # install, build, run the tests only
 set -euo pipefail
 
@@ -13,7 +13,7 @@ build="${TALUS_BUILD_DIR:-$root/build}"
 
 packages=(
   cmake ninja-build g++ pkg-config ccache
-  libopenvdb-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
+  libopenvdb-dev libblosc-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
   libhdf5-dev libgtest-dev libtomlplusplus-dev libcli11-dev
   libgdal-dev gdal-bin libcairo2-dev
   clang libclang-rt-14-dev
@@ -41,7 +41,7 @@ else
 fi
 
 sanitized_checks() {
-  # ASan + UBSan build (clang) of the libraries, the test suite and the libFuzzer target.
+  # ASan + UBSan build (clang) of the libraries, the test suite and the libFuzzer targets.
   local san="${TALUS_SANITIZE_BUILD_DIR:-$root/build-san}"
   CC=clang CXX=clang++ cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DTALUS_SANITIZE=ON -DTALUS_FUZZ=ON >/dev/null
@@ -51,12 +51,23 @@ sanitized_checks() {
   ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$san" --output-on-failure -j "$jobs" --timeout 1200 \
     -E "ColumnCollapse|Heap\.|DamBreak|WaterColumn|SnowSlab|Determinism|BasalLaws|Rheology|MuI\.Steady"
-  local corpus
-  corpus="$(mktemp -d)"
-  cp "$root"/tests/fuzz/seeds/*.toml "$root"/data/scenes/*.toml "$corpus"/
-  ASAN_OPTIONS=detect_leaks=0 "$san/tests/fuzz/talus_scene_fuzzer" "$corpus" \
-    -max_total_time="${TALUS_FUZZ_SECONDS:-90}" -rss_limit_mb=3072 -timeout=30 -print_final_stats=1
-  rm -rf "$corpus"
+  # Each reader of user files is fuzzed from its committed seed corpus (tests/fuzz/seeds/<target>/)
+  # in a scratch copy: the scene reader for TALUS_FUZZ_SECONDS (90), the others for
+  # TALUS_FUZZ_FILE_SECONDS (25) each.
+  local target corpus seconds
+  for target in scene raster polygon level_set checkpoint; do
+    corpus="$(mktemp -d)"
+    cp "$root"/tests/fuzz/seeds/"$target"/* "$corpus"/
+    seconds="${TALUS_FUZZ_FILE_SECONDS:-25}"
+    if [ "$target" = scene ]; then
+      cp "$root"/data/scenes/*.toml "$corpus"/
+      seconds="${TALUS_FUZZ_SECONDS:-90}"
+    fi
+    echo "talus setup: fuzzing the $target reader for $seconds s"
+    ASAN_OPTIONS=detect_leaks=0 "$san/tests/fuzz/talus_${target}_fuzzer" "$corpus" \
+      -max_total_time="$seconds" -rss_limit_mb=3072 -timeout=30 -print_final_stats=1
+    rm -rf "$corpus"
+  done
 }
 
 case "$mode" in

@@ -1,7 +1,9 @@
 // The `talus` command line: run scenes, check them, and (later) prepare terrain and benchmarks.
 #include "io/common/input_error.h"
+#include "io/common/write_error.h"
 #include "io/terrain/dem_raster.h"
 #include "io/run/run_driver.h"
+#include "io/run/run_signals.h"
 #include "io/scene/avaframe_scene.h"
 #include "io/scene/scene.h"
 #include "io/config/toml_reader.h"
@@ -18,6 +20,10 @@
 using namespace talus;
 
 namespace {
+
+// Exit status: 0 done, 1 other failure, 2 bad input, 3 numerical failure, 4 an output could not
+// be written (disk full, quota, read-only or removed folder), 128 + signal when interrupted.
+constexpr int kExitWriteFailure = 4;
 
 SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) {
   if (scene.empty()) return loadSceneString(defaultSceneText(), "<default scene>", sets);
@@ -36,15 +42,32 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   opt.resume = !resume.empty();
   opt.threads = threads;
   opt.progress = !quiet;
+  opt.handleSignals = true;
   size_t n = 0;
   for (const auto& g : setup.groups) n += g->size();
   if (!quiet)
     std::fprintf(stderr, "talus: %s: %zu particles, dx %g m, end time %g s\n", setup.file.c_str(), n,
                  setup.settings.dx, setup.endTime);
   const RunResult r = runScene(std::move(setup), opt);
-  if (!r.ok) {
+  // How to continue: the same scene and overrides (the checkpoint is refused otherwise).
+  std::string again = "talus run" + (scene.empty() ? std::string() : " " + scene);
+  for (const auto& s : sets) again += " --set " + s;
+  again += " --resume " + r.outDir;
+  char at[96];
+  std::snprintf(at, sizeof at, "t = %.6g s", r.checkpointTime);
+  switch (r.status) {
+  case RunStatus::Completed: break;
+  case RunStatus::NumericalFailure:
     std::fprintf(stderr, "talus: run stopped: %s\n", r.error.c_str());
     return 3;
+  case RunStatus::WriteFailure:
+    std::fprintf(stderr, "talus: error: %s; files written before are intact%s\n", r.error.c_str(),
+                 r.checkpointTime >= 0 ? ("; continue from the checkpoint of " + std::string(at) + ": " + again).c_str() : "");
+    return kExitWriteFailure;
+  case RunStatus::Interrupted:
+    std::fprintf(stderr, "talus: interrupted by %s at step %llu, %s; checkpoint written; continue with: %s\n",
+                 signalName(r.signal).c_str(), (unsigned long long)r.steps, at, again.c_str());
+    return 128 + r.signal;
   }
   if (!quiet) {
     std::fprintf(stderr, "talus: done in %.1f s, results in %s/\n", r.wallSeconds, r.outDir.c_str());
@@ -141,6 +164,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 2;
+  } catch (const WriteError& e) {
+    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    return kExitWriteFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 1;

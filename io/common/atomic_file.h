@@ -1,23 +1,30 @@
-// Write-then-rename, so a run killed mid-write never leaves a truncated output behind.
+// How every output reaches the disk: written to PATH.tmp, flushed to the device, then renamed to
+// PATH (atomic on POSIX file systems). A run killed or failing mid-write leaves the previous
+// version of PATH, or none, never a truncated one. Failures throw WriteError naming PATH.
 #pragma once
 
-#include <filesystem>
+#include "io/common/write_error.h"
+
 #include <functional>
 #include <string>
 
 namespace talus {
 
-/// Calls write(tmpPath), then renames tmpPath to path (atomic on POSIX file systems).
-inline void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-  const std::string tmp = path + ".tmp";
-  try {
-    write(tmp);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
-  std::filesystem::rename(tmp, path);
+/// Calls write(path + tmpSuffix), syncs it and renames it to path. Any exception from `write`
+/// (except std::bad_alloc) becomes a WriteError naming `path`; the temporary is removed. Files
+/// that several processes may write at once (the terrain cache) pass a suffix with the pid.
+void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
+                     const std::string& tmpSuffix = ".tmp");
+
+/// Writes `size` bytes to `path` (created or truncated) with checked write(2) and close(2);
+/// throws WriteError(path, cause).
+void writeFileBytes(const std::string& path, const void* data, size_t size);
+inline void writeFileBytes(const std::string& path, const std::string& bytes) {
+  writeFileBytes(path, bytes.data(), bytes.size());
 }
+
+/// For writers that do not report write errors (OpenVDB's never checks its stream): `write`
+/// writes to a scratch path in memory, and the bytes then go to `path` with checked writes.
+void writeThroughMemory(const std::string& path, const std::function<void(const std::string& scratch)>& write);
 
 } // namespace talus

@@ -128,11 +128,17 @@ Rgb lineColour(int i) {
 }
 
 void writePng(cairo_surface_t* surface, const std::string& path) {
-  writeAtomically(path, [&](const std::string& tmp) {
-    const cairo_status_t st = cairo_surface_write_to_png(surface, tmp.c_str());
-    if (st != CAIRO_STATUS_SUCCESS)
-      throw std::runtime_error("cannot write " + tmp + ": " + cairo_status_to_string(st));
-  });
+  // Encoded in memory: cairo's file writer reports a full disk only as "error while writing".
+  std::string png;
+  const cairo_status_t st = cairo_surface_write_to_png_stream(
+      surface,
+      [](void* out, const unsigned char* data, unsigned int n) {
+        static_cast<std::string*>(out)->append(reinterpret_cast<const char*>(data), n);
+        return CAIRO_STATUS_SUCCESS;
+      },
+      &png);
+  if (st != CAIRO_STATUS_SUCCESS) throw WriteError(path, cairo_status_to_string(st));
+  writeAtomically(path, [&](const std::string& tmp) { writeFileBytes(tmp, png); });
 }
 
 } // namespace talus::chart

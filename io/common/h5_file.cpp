@@ -1,28 +1,66 @@
 #include "io/common/h5_file.h"
 
+#include "io/common/write_error.h"
+
 #include <cstdint>
 
 namespace talus::h5 {
 
 namespace {
+// HDF5 1.10 keeps a file whose close failed (its last flush hit a full disk) in its table of
+// open objects, and its exit handler then crashes closing it again: the segmentation fault
+// after "cannot write HDF5 dataset". Every file here is closed explicitly, so the handler is
+// not needed; this runs before main, before HDF5 initialises itself.
+const bool kNoExitHandler = (H5dont_atexit(), true);
+
 // Silence HDF5's own error stack printing; failures surface as exceptions with our message.
 struct QuietErrors {
   QuietErrors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 };
 void quiet() { static QuietErrors q; }
+
+herr_t collect(unsigned, const H5E_error2_t* e, void* out) {
+  if (e->desc) static_cast<std::vector<std::string>*>(out)->emplace_back(e->desc);
+  return 0;
+}
+
+std::string fileName(hid_t obj) {
+  char name[4096] = "";
+  return H5Fget_name(obj, name, sizeof name) > 0 ? std::string(name) : std::string("HDF5 file");
+}
 } // namespace
 
-Handle createFile(const std::string& path) {
+std::string lastError() {
+  std::vector<std::string> descs;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect, &descs);
+  // The system's reason (ENOSPC, EFBIG, EROFS...) is quoted in the file driver's message.
+  const std::string key = "error message = '";
+  for (const auto& d : descs)
+    if (const auto at = d.find(key); at != std::string::npos) {
+      const auto end = d.find('\'', at + key.size());
+      return d.substr(at + key.size(), end == std::string::npos ? std::string::npos : end - at - key.size());
+    }
+  return descs.empty() ? "HDF5 call failed" : descs.back();
+}
+
+Handle createFile(const std::string& path, size_t userBlock) {
   quiet();
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0) throw std::runtime_error("cannot create HDF5 file " + path);
+  Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  if (userBlock) H5Pset_userblock(fcpl, hsize_t(userBlock));
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+  if (f < 0) throw WriteError(path, lastError());
   return Handle(f, H5Fclose);
+}
+
+void closeFile(Handle& file) {
+  const std::string name = fileName(file);
+  if (file.close() < 0) throw WriteError(name, lastError());
 }
 
 Handle openFile(const std::string& path) {
   quiet();
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) throw std::runtime_error("cannot open HDF5 file " + path);
+  if (f < 0) throw std::runtime_error("cannot open HDF5 file " + path + " (" + lastError() + ")");
   return Handle(f, H5Fclose);
 }
 
@@ -35,7 +73,9 @@ Handle untimedObjects(hid_t cls) {
 
 Handle createGroup(hid_t parent, const std::string& name) {
   Handle gcpl = untimedObjects(H5P_GROUP_CREATE);
-  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose);
+  const hid_t id = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT);
+  if (id < 0) throw WriteError(fileName(parent), lastError());
+  return Handle(id, H5Gclose);
 }
 
 template <> hid_t nativeType<double>() { return H5T_NATIVE_DOUBLE; }
@@ -50,9 +90,11 @@ void writeDataset(hid_t parent, const std::string& name, const T* data, size_t r
   hsize_t dims[2] = {hsize_t(rows), hsize_t(cols)};
   Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose);
   Handle dcpl = untimedObjects(H5P_DATASET_CREATE);
-  Handle set(H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
+  const hid_t id = H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (id < 0) throw WriteError(fileName(parent), lastError());
+  Handle set(id, H5Dclose);
   if (rows && H5Dwrite(set, nativeType<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw std::runtime_error("cannot write HDF5 dataset " + name);
+    throw WriteError(fileName(parent), lastError());
 }
 
 template <class T>
@@ -85,8 +127,10 @@ bool exists(hid_t file, const std::string& path) { return H5Lexists(file, path.c
 
 void writeAttribute(hid_t obj, const std::string& name, double value) {
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attr(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+  const hid_t id = H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (id < 0) throw WriteError(fileName(obj), lastError());
+  Handle attr(id, H5Aclose);
+  if (H5Awrite(attr, H5T_NATIVE_DOUBLE, &value) < 0) throw WriteError(fileName(obj), lastError());
 }
 
 namespace {
@@ -101,10 +145,12 @@ void writeStrings(hid_t obj, const std::string& name, const std::vector<std::str
   Handle type = stringType();
   hsize_t n = values.size();
   Handle space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle attr(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  const hid_t id = H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+  if (id < 0) throw WriteError(fileName(obj), lastError());
+  Handle attr(id, H5Aclose);
   std::vector<const char*> ptrs;
   for (const auto& v : values) ptrs.push_back(v.c_str());
-  if (H5Awrite(attr, type, ptrs.data()) < 0) throw std::runtime_error("cannot write HDF5 attribute " + name);
+  if (H5Awrite(attr, type, ptrs.data()) < 0) throw WriteError(fileName(obj), lastError());
 }
 } // namespace
 

@@ -8,12 +8,16 @@
 
 namespace talus::h5 {
 
+/// The cause of the last failed HDF5 call on this thread: the system's message when a file
+/// operation failed ("No space left on device"), else HDF5's innermost description.
+std::string lastError();
+
 /// Owns an hid_t and closes it with the matching H5*close.
 class Handle {
 public:
   Handle() = default;
   Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5 call failed");
+    if (id_ < 0) throw std::runtime_error("HDF5 call failed: " + lastError());
   }
   Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
   Handle& operator=(Handle&& o) noexcept {
@@ -23,16 +27,26 @@ public:
   }
   ~Handle() { reset(); }
   operator hid_t() const { return id_; }
-  void reset() {
-    if (id_ >= 0 && close_) close_(id_);
+  void reset() { close(); }
+  /// Closes now and returns the close function's status (a file's close flushes it: it fails
+  /// when the disk is full).
+  herr_t close() {
+    const herr_t r = id_ >= 0 && close_ ? close_(id_) : 0;
     id_ = -1;
+    return r;
   }
 private:
   hid_t id_ = -1;
   herr_t (*close_)(hid_t) = nullptr;
 };
 
-Handle createFile(const std::string& path);
+/// Creates (truncates) a file for writing; throws WriteError naming it and the cause.
+/// `userBlock` bytes (0 or a power of two >= 512) are left at the start for the caller.
+Handle createFile(const std::string& path, size_t userBlock = 0);
+/// Closes a file created for writing, reporting a failed final flush as a WriteError. A writer
+/// must call it: the handle's destructor ignores errors.
+void closeFile(Handle& file);
+
 Handle openFile(const std::string& path);
 Handle createGroup(hid_t parent, const std::string& name);
 

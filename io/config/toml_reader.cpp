@@ -57,13 +57,15 @@ std::shared_ptr<ConfigTable> parse(const std::string& text, const std::string& n
 
 } // namespace
 
-std::shared_ptr<ConfigTable> readTomlFile(const std::string& path) {
+std::shared_ptr<ConfigTable> readTomlFile(const std::string& path, std::string* text) {
   if (!std::filesystem::is_regular_file(path))
     throw InputError(path, 0, "", std::filesystem::exists(path) ? "not a regular file" : "scene file not found");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open scene file");
   std::ostringstream s;
   s << in.rdbuf();
+  if (!in) throw InputError(path, 0, "", "cannot read scene file");
+  if (text) *text = s.str();
   return parse(s.str(), path);
 }
 

@@ -8,7 +8,8 @@
 
 namespace talus {
 
-std::shared_ptr<ConfigTable> readTomlFile(const std::string& path);
+/// `text`, when given, receives the file's bytes (the scene hash is taken over them).
+std::shared_ptr<ConfigTable> readTomlFile(const std::string& path, std::string* text = nullptr);
 std::shared_ptr<ConfigTable> readTomlString(const std::string& text, const std::string& name);
 
 /// Applies "section.key=value" (value in TOML syntax; a bare word is taken as a string).

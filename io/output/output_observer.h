@@ -40,6 +40,23 @@ public:
   /// Files written so far, relative to the output directory.
   const std::vector<std::string>& files() const { return files_; }
 
+  /// The list travels in checkpoints, so a resumed run's summary.json names the files written
+  /// before the interruption too.
+  void saveFiles(StateArchive& a, const std::string& name) const {
+    std::string text;
+    for (const auto& f : files_) text += f + '\n';
+    a.putVector(name, std::vector<char>(text.begin(), text.end()));
+  }
+  void loadFiles(const StateArchive& a, const std::string& name) {
+    std::vector<char> text;
+    a.getVector(name, text);
+    files_.clear();
+    std::string f;
+    for (char c : text)
+      if (c != '\n') f += c;
+      else recordFile(f), f.clear();
+  }
+
 protected:
   void recordFile(const std::string& relativePath) {
     for (const auto& f : files_)

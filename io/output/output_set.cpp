@@ -55,14 +55,20 @@ void OutputSet::step(const Simulation& sim) {
 
 void OutputSet::save(StateArchive& a) const {
   a.putValue("outputs/last_time", lastTime_);
-  for (size_t i = 0; i < outputs_.size(); ++i)
-    outputs_[i]->save(a, "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/");
+  for (size_t i = 0; i < outputs_.size(); ++i) {
+    const std::string prefix = "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/";
+    outputs_[i]->save(a, prefix);
+    outputs_[i]->saveFiles(a, prefix + "files");
+  }
 }
 
 void OutputSet::load(const StateArchive& a) {
   lastTime_ = a.getValue<double>("outputs/last_time");
-  for (size_t i = 0; i < outputs_.size(); ++i)
-    outputs_[i]->load(a, "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/");
+  for (size_t i = 0; i < outputs_.size(); ++i) {
+    const std::string prefix = "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/";
+    outputs_[i]->load(a, prefix);
+    outputs_[i]->loadFiles(a, prefix + "files");
+  }
 }
 
 void OutputSet::frame(const Simulation& sim, int index) {

@@ -25,13 +25,16 @@ void writeParticlesH5(const std::string& path, const Simulation& sim, const std:
   }
   writeAtomically(path, [&](const std::string& tmp) {
     h5::Handle f = h5::createFile(tmp);
-    h5::Handle grp = h5::createGroup(f, "particles");
-    h5::writeDataset(grp, "position", pos.data(), n, 3);
-    h5::writeDataset(grp, "velocity", vel.data(), n, 3);
-    h5::writeDataset(grp, "material", mat.data(), n, 1);
-    h5::writeDataset(grp, "mass", mass.data(), n, 1);
+    {
+      h5::Handle grp = h5::createGroup(f, "particles");
+      h5::writeDataset(grp, "position", pos.data(), n, 3);
+      h5::writeDataset(grp, "velocity", vel.data(), n, 3);
+      h5::writeDataset(grp, "material", mat.data(), n, 1);
+      h5::writeDataset(grp, "mass", mass.data(), n, 1);
+    }
     h5::writeAttribute(f, "time", sim.time());
     h5::writeAttribute(f, "material_names", names);
+    h5::closeFile(f);
   });
 }
 

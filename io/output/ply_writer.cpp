@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 namespace talus {
@@ -56,10 +55,8 @@ void writeParticlesPly(const std::string& path, const Simulation& sim) {
     }
   }
   writeAtomically(path, [&](const std::string& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(header.data(), std::streamsize(header.size()));
-    f.write(body.data(), std::streamsize(body.size()));
-    if (!f) throw std::runtime_error("cannot write " + tmp);
+    header.append(body.data(), body.size());
+    writeFileBytes(tmp, header);
   });
 }
 

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 namespace talus {
@@ -161,18 +160,19 @@ void TimeSeries::sample(const Simulation& sim) {
 void TimeSeries::writeCsv() {
   const std::string path = (std::filesystem::path(outDir_) / "series.csv").string();
   writeAtomically(path, [&](const std::string& tmp) {
-    std::ofstream f(tmp);
-    for (size_t i = 0; i < table_.header.size(); ++i) f << (i ? "," : "") << table_.header[i];
-    f << '\n';
+    std::string f;
+    for (size_t i = 0; i < table_.header.size(); ++i) f += (i ? "," : "") + table_.header[i];
+    f += '\n';
     char buf[32];
     for (const auto& row : table_.rows) {
       for (size_t i = 0; i < row.size(); ++i) {
         std::snprintf(buf, sizeof buf, "%.10g", row[i]);
-        f << (i ? "," : "") << buf;
+        if (i) f += ',';
+        f += buf;
       }
-      f << '\n';
+      f += '\n';
     }
-    if (!f) throw std::runtime_error("cannot write " + tmp);
+    writeFileBytes(tmp, f);
   });
   recordFile("series.csv");
 }

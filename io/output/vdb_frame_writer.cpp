@@ -50,10 +50,12 @@ void describe(openvdb::GridBase& g, const std::string& name, const std::string& 
 
 void writeFile(const std::string& path, const openvdb::GridPtrVec& grids, const openvdb::MetaMap& meta) {
   writeAtomically(path, [&](const std::string& tmp) {
-    openvdb::io::File file(tmp);
-    file.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
-    file.write(grids, meta);
-    file.close();
+    writeThroughMemory(tmp, [&](const std::string& scratch) {
+      openvdb::io::File file(scratch);
+      file.setCompression(openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ACTIVE_MASK);
+      file.write(grids, meta);
+      file.close();
+    });
   });
 }
 

@@ -2,9 +2,18 @@
 
 #include "io/common/atomic_file.h"
 #include "io/common/h5_file.h"
+#include "io/common/input_error.h"
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
+#include <sstream>
 #include <stdexcept>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
 
 namespace talus {
 
@@ -48,31 +57,149 @@ private:
   mutable std::vector<uint8_t> cache_;
 };
 
+constexpr size_t kHeaderBytes = 512; // an HDF5 user block: HDF5 skips it
+constexpr char kMagic[] = "TALUS CHECKPOINT\n";
+
+struct Header {
+  int format = 0;
+  std::string version, scene;
+  uint64_t bytes = 0;
+  uint32_t crc = 0;
+};
+
+uint32_t crc32Of(const std::string& s) {
+  return uint32_t(::crc32(0, reinterpret_cast<const Bytef*>(s.data()), uInt(s.size())));
+}
+
+std::string hex32(uint32_t v) {
+  char b[16];
+  std::snprintf(b, sizeof b, "%08x", v);
+  return b;
+}
+
+std::string headerBody(const Header& h) {
+  return std::string(kMagic) + "format " + std::to_string(h.format) + "\ntalus " + h.version + "\nscene " +
+         h.scene + "\nbytes " + std::to_string(h.bytes) + "\ncrc32 " + hex32(h.crc) + "\n";
+}
+
+/// CRC-32 of bytes [from, end) of an open file; throws on a read error.
+uint32_t crcOfFile(int fd, uint64_t from, uint64_t end, const std::function<void(const std::string&)>& fail) {
+  std::vector<unsigned char> buf(size_t(1) << 20);
+  uLong crc = ::crc32(0, nullptr, 0);
+  for (uint64_t at = from; at < end;) {
+    const ssize_t r = ::pread(fd, buf.data(), size_t(std::min<uint64_t>(buf.size(), end - at)), off_t(at));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) fail(r < 0 ? errnoText(errno) : "file shrank while being read");
+    crc = ::crc32(crc, buf.data(), uInt(r));
+    at += uint64_t(r);
+  }
+  return uint32_t(crc);
+}
+
+/// The HDF5 part is written and closed; now its length and checksum go into the user block.
+void seal(const std::string& tmp, const CheckpointIdentity& id) {
+  const int fd = ::open(tmp.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) throw WriteError(tmp, errnoText(errno));
+  auto fail = [&](const std::string& cause) {
+    ::close(fd);
+    throw WriteError(tmp, cause);
+  };
+  struct stat st{};
+  if (::fstat(fd, &st) != 0) fail(errnoText(errno));
+  Header h;
+  h.format = kCheckpointFormat;
+  h.version = talusVersion();
+  h.scene = id.sceneHash;
+  h.bytes = uint64_t(st.st_size) - kHeaderBytes;
+  h.crc = crcOfFile(fd, kHeaderBytes, uint64_t(st.st_size), fail);
+  std::string text = headerBody(h);
+  text += "header_crc32 " + hex32(crc32Of(text)) + "\n";
+  if (text.size() > kHeaderBytes) fail("checkpoint header too long");
+  text.resize(kHeaderBytes, '\0');
+  if (::pwrite(fd, text.data(), text.size(), 0) != ssize_t(text.size())) fail(errnoText(errno));
+  if (::close(fd) != 0) throw WriteError(tmp, errnoText(errno));
+}
+
 } // namespace
+
+CheckpointHeader inspectCheckpoint(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path, "no checkpoint to resume from");
+  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "not a regular file");
+  auto refuse = [&](const std::string& why) { throw InputError(path, why); };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) refuse("cannot open (" + errnoText(errno) + ")");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st{};
+  if (::fstat(fd, &st) != 0) refuse("cannot read (" + errnoText(errno) + ")");
+  const uint64_t size = uint64_t(st.st_size);
+  std::string block(kHeaderBytes, '\0');
+  const ssize_t got = ::pread(fd, block.data(), block.size(), 0);
+  if (got < 0) refuse("cannot read (" + errnoText(errno) + ")");
+  block.resize(size_t(got));
+  if (size == 0) refuse("empty file");
+  if (block.compare(0, 8, "\x89HDF\r\n\x1a\n") == 0)
+    refuse("an HDF5 file without a checkpoint header: checkpoint format 1 (an older Talus, without checksum) or "
+           "not a checkpoint; this Talus reads format " + std::to_string(kCheckpointFormat) + ": start the run again");
+  if (block.compare(0, sizeof kMagic - 1, kMagic) != 0) refuse("not a Talus checkpoint");
+  if (size < kHeaderBytes) refuse("truncated (" + std::to_string(size) + " bytes)");
+  block.resize(std::min(block.find('\0'), block.size()));
+  const auto crcLine = block.rfind("header_crc32 ");
+  if (crcLine == std::string::npos || hex32(crc32Of(block.substr(0, crcLine))) + "\n" != block.substr(crcLine + 13))
+    refuse("damaged header (checksum mismatch)");
+  std::istringstream in(block.substr(sizeof kMagic - 1, crcLine - (sizeof kMagic - 1)));
+  Header h;
+  std::string key[5], crc;
+  in >> key[0] >> h.format >> key[1] >> h.version >> key[2] >> h.scene >> key[3] >> h.bytes >> key[4] >> crc;
+  if (!in || key[0] != "format" || key[1] != "talus" || key[2] != "scene" || key[3] != "bytes" || key[4] != "crc32")
+    refuse("damaged header");
+  if (h.format != kCheckpointFormat)
+    refuse("checkpoint format " + std::to_string(h.format) + "; this Talus reads format " +
+           std::to_string(kCheckpointFormat));
+  if (h.version != talusVersion())
+    refuse("written by Talus " + h.version + "; this is Talus " + talusVersion() +
+           ", which resumes only its own checkpoints (finish the run with Talus " + h.version + " or start again)");
+  if (h.bytes != size - kHeaderBytes)
+    refuse("truncated or extended: " + std::to_string(size - kHeaderBytes) + " bytes after the header, " +
+           std::to_string(h.bytes) + " written");
+  if (hex32(crcOfFile(fd, kHeaderBytes, size, refuse)) != crc) refuse("damaged (checksum mismatch)");
+  return {h.format, h.version, h.scene};
+}
+
+const char* talusVersion() { return TALUS_VERSION; }
 
 std::string checkpointPath(const std::string& dir) { return (std::filesystem::path(dir) / "checkpoint.h5").string(); }
 
-void writeCheckpoint(const std::string& path, const Simulation& sim, const std::function<void(StateArchive&)>& extra) {
+void writeCheckpoint(const std::string& path, const Simulation& sim, const CheckpointIdentity& id,
+                     const std::function<void(StateArchive&)>& extra) {
   writeAtomically(path, [&](const std::string& tmp) {
-    h5::Handle f = h5::createFile(tmp);
+    h5::Handle f = h5::createFile(tmp, kHeaderBytes);
     {
       H5Archive a(f, true);
       sim.save(a);
       if (extra) extra(a);
     }
     h5::writeAttribute(f, "time", sim.time());
+    h5::closeFile(f);
+    seal(tmp, id);
   });
 }
 
-void readCheckpoint(const std::string& path, Simulation& sim, const std::function<void(const StateArchive&)>& extra) {
-  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no checkpoint to resume from");
+void readCheckpoint(const std::string& path, Simulation& sim, const CheckpointIdentity& id,
+                    const std::function<void(const StateArchive&)>& extra) {
+  const CheckpointHeader h = inspectCheckpoint(path);
+  if (h.sceneHash != id.sceneHash)
+    throw InputError(path, "written for another scene (scene hash " + h.sceneHash + ", this scene " + id.sceneHash +
+                               "): the scene file or its --set overrides changed since");
   try {
     h5::Handle f = h5::openFile(path);
     H5Archive a(f, false);
     sim.load(a);
     if (extra) extra(a);
   } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": " + e.what());
+    throw InputError(path, std::string("does not fit this scene: ") + e.what());
   }
 }
 

@@ -1,5 +1,6 @@
 // HDF5 checkpoints: the full simulation state, written atomically (temporary file + rename), so a
-// run killed at any moment leaves the previous checkpoint intact and readable.
+// run killed at any moment leaves the previous checkpoint intact and readable, and sealed with a
+// checksum, so a damaged one is refused instead of resumed.
 #pragma once
 
 #include "engine/simulation.h"
@@ -12,14 +13,40 @@ namespace talus {
 /// DIR/checkpoint.h5.
 std::string checkpointPath(const std::string& dir);
 
+/// What a checkpoint must match to be resumed: the scene it was written for (SceneSetup::hash:
+/// the scene text and --set overrides) and the Talus version (checked by readCheckpoint itself).
+struct CheckpointIdentity {
+  std::string sceneHash;
+};
+
+/// The checkpoint file format: an HDF5 file behind a 512-byte text header (an HDF5 user block)
+/// holding the format, the Talus version, the scene hash, the HDF5 part's length and its CRC-32.
+constexpr int kCheckpointFormat = 2;
+
 /// Writes sim's state (see Simulation::save) and whatever `extra` adds (the run driver's clock
-/// and its outputs' accumulated state).
-void writeCheckpoint(const std::string& path, const Simulation& sim,
+/// and its outputs' accumulated state), atomically. Throws WriteError.
+void writeCheckpoint(const std::string& path, const Simulation& sim, const CheckpointIdentity& id,
                      const std::function<void(StateArchive&)>& extra = {});
 
-/// Restores a checkpoint into a simulation built from the same scene, then calls `extra`.
-/// Throws std::runtime_error naming the file when it is missing, unreadable or does not match.
-void readCheckpoint(const std::string& path, Simulation& sim,
+/// Restores a checkpoint into a simulation built from the same scene, then calls `extra`. The
+/// header is checked before HDF5 sees the file, so a damaged file never reaches its parser.
+/// Throws InputError naming the file and the reason: missing, truncated, damaged (checksum), not
+/// a checkpoint, another format, another Talus version, another scene, or contents that do not
+/// fit the scene.
+void readCheckpoint(const std::string& path, Simulation& sim, const CheckpointIdentity& id,
                     const std::function<void(const StateArchive&)>& extra = {});
+
+/// A checkpoint's header, after its checksum was verified.
+struct CheckpointHeader {
+  int format = 0;
+  std::string talusVersion, sceneHash;
+};
+
+/// Checks that `path` is a whole, undamaged checkpoint of this format and Talus version (header,
+/// length, checksum) without reading its contents; throws InputError with the reason.
+CheckpointHeader inspectCheckpoint(const std::string& path);
+
+/// The Talus version written into checkpoints (the project version).
+const char* talusVersion();
 
 } // namespace talus

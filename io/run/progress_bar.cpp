@@ -28,7 +28,8 @@ void ProgressBar::update(double time, uint64_t steps, uint64_t particleSteps) {
 }
 
 void ProgressBar::finish() {
-  if (enabled_) std::fprintf(stream_, "\n");
+  if (enabled_ && !finished_) std::fprintf(stream_, "\n");
+  finished_ = true;
 }
 
 } // namespace talus

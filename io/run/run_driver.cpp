@@ -1,9 +1,11 @@
 #include "io/run/run_driver.h"
 
+#include "io/common/write_error.h"
 #include "io/run/checkpoint.h"
 #include "io/output/output_set.h"
 #include "io/output/particle_writer.h"
 #include "io/run/progress_bar.h"
+#include "io/run/run_signals.h"
 #include "io/run/run_summary.h"
 
 #include <algorithm>
@@ -13,10 +15,25 @@
 #include <cstdlib>
 #include <limits>
 #include <filesystem>
+#include <optional>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
 namespace talus {
+
+namespace {
+/// Thrown from the step callback to leave the time loop after a stop signal.
+struct StopRequested {
+  int signal;
+};
+
+/// Creating a folder fails like writing a file (full, read-only, removed): report it as one.
+void makeDirectories(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw WriteError(dir, ec.message());
+}
+} // namespace
 
 std::vector<std::string> filesToOpenFirst(const RunResult& r) {
   std::vector<std::string> out;
@@ -30,74 +47,123 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   namespace fs = std::filesystem;
   RunResult res;
   res.outDir = opt.outDir.empty() ? scene.output.directory : opt.outDir;
-  fs::create_directories(res.outDir);
   const int threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   Simulation sim(scene.settings, std::move(scene.groups));
-  OutputSet outputs(scene.output, scene.runContext(), res.outDir); // only what [output] asks for
-  const double interval = scene.output.frameInterval;
-  const double checkpointEvery =
-      scene.output.checkpointInterval < 0 ? scene.endTime / 10 : scene.output.checkpointInterval;
-  const std::string checkpointFile = checkpointPath(res.outDir);
-  int frame = 0;
-  double nextCheckpoint = checkpointEvery > 0 ? checkpointEvery : std::numeric_limits<double>::infinity();
-  // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
-  // resumed run then replaces their accumulated state with the checkpoint's.
-  outputs.start(sim);
-  if (opt.resume) {
-    readCheckpoint(checkpointFile, sim, [&](const StateArchive& a) {
-      outputs.load(a);
-      frame = a.getValue<int32_t>("driver/next_frame");
-      nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
-    });
-  } else if (interval > 0) {
-    outputs.frame(sim, frame++);
-  }
-  auto checkpoint = [&] {
-    writeCheckpoint(checkpointFile, sim, [&](StateArchive& a) {
-      outputs.save(a);
-      a.putValue("driver/next_frame", int32_t(frame));
-      a.putValue("driver/next_checkpoint", nextCheckpoint);
-    });
-  };
-
-  ProgressBar bar(scene.endTime, stderr, opt.progress);
-  const auto t0 = std::chrono::steady_clock::now();
   RunInfo info;
   info.scene = scene.file;
   info.threads = threads;
   info.materialNames = scene.materialNames;
-  try {
-    while (sim.time() < scene.endTime) {
-      const double frameTime = frame * interval;
-      const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
-      sim.advanceTo(next, [&] {
-        outputs.step(sim);
-        bar.update(sim.time(), sim.steps(), sim.particleSteps());
-        if (sim.time() >= nextCheckpoint && sim.time() < scene.endTime) {
-          nextCheckpoint += checkpointEvery;
-          checkpoint(); // the last good state: a failure later never overwrites it
-        }
-      });
-      // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
-      // rounding of it.
-      if (interval > 0 && next >= frameTime - 1e-9 * interval) outputs.frame(sim, frame++);
-    }
-  } catch (const NumericalError& e) {
-    res.ok = false;
+  std::optional<OutputSet> outputs;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto record = [&] {
+    res.steps = sim.steps(), res.time = sim.time();
+    res.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    info.wallSeconds = res.wallSeconds;
+    if (outputs) info.outputs = outputs->reports();
+    res.files.clear();
+    for (const auto& o : info.outputs) res.files.insert(res.files.end(), o.files.begin(), o.files.end());
+    res.files.push_back("summary.json");
+  };
+  const std::string summaryFile = (fs::path(res.outDir) / "summary.json").string();
+  const std::string checkpointFile = checkpointPath(res.outDir);
+  const CheckpointIdentity identity{scene.hash};
+
+  auto writeFailed = [&](const WriteError& e) {
+    res.status = RunStatus::WriteFailure;
     res.error = e.what();
     info.status = std::string("failed: ") + e.what();
+    record();
+    try {
+      writeSummaryJson(summaryFile, sim, info);
+    } catch (const WriteError&) {
+      // The disk refuses it as well; the error above is the one to report.
+    }
+  };
+
+  // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
+  // resumed run then replaces their accumulated state with the checkpoint's. A refused
+  // checkpoint throws InputError before anything is written.
+  int frame = 0;
+  const double interval = scene.output.frameInterval;
+  const double checkpointEvery =
+      scene.output.checkpointInterval < 0 ? scene.endTime / 10 : scene.output.checkpointInterval;
+  double nextCheckpoint = checkpointEvery > 0 ? checkpointEvery : std::numeric_limits<double>::infinity();
+  std::optional<RunSignals> signals;
+  if (opt.handleSignals) signals.emplace(opt.progress);
+  try {
+    makeDirectories(res.outDir);
+    outputs.emplace(scene.output, scene.runContext(), res.outDir); // only what [output] asks for
+    outputs->start(sim);
+    if (opt.resume) {
+      readCheckpoint(checkpointFile, sim, identity, [&](const StateArchive& a) {
+        outputs->load(a);
+        frame = a.getValue<int32_t>("driver/next_frame");
+        nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
+      });
+      res.checkpointTime = sim.time();
+    } else if (interval > 0) {
+      outputs->frame(sim, frame++);
+    }
+    auto checkpoint = [&] {
+      writeCheckpoint(checkpointFile, sim, identity, [&](StateArchive& a) {
+        outputs->save(a);
+        a.putValue("driver/next_frame", int32_t(frame));
+        a.putValue("driver/next_checkpoint", nextCheckpoint);
+      });
+      res.checkpointTime = sim.time();
+    };
+
+    ProgressBar bar(scene.endTime, stderr, opt.progress);
+    try {
+      while (sim.time() < scene.endTime) {
+        const double frameTime = frame * interval;
+        const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
+        sim.advanceTo(next, [&] {
+          outputs->step(sim);
+          bar.update(sim.time(), sim.steps(), sim.particleSteps());
+          // Signals are read once per step, after the step, when the state is whole (under MPI,
+          // the ranks' flags are reduced here). SIGUSR1: the job may be killed soon.
+          const bool asked = takeCheckpointRequest();
+          if (sim.time() >= nextCheckpoint && sim.time() < scene.endTime) {
+            nextCheckpoint += checkpointEvery;
+            checkpoint(); // the last good state: a failure later never overwrites it
+          } else if (asked) {
+            checkpoint();
+          }
+          // At the end time the run is complete: its final outputs are quicker than a resume.
+          if (const int s = stopSignalReceived(); s && sim.time() < scene.endTime) throw StopRequested{s};
+        });
+        // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
+        // rounding of it.
+        if (interval > 0 && next >= frameTime - 1e-9 * interval) outputs->frame(sim, frame++);
+      }
+    } catch (const NumericalError& e) {
+      res.status = RunStatus::NumericalFailure;
+      res.error = e.what();
+      info.status = std::string("failed: ") + e.what();
+    } catch (const StopRequested& s) {
+      res.status = RunStatus::Interrupted;
+      res.signal = s.signal;
+      info.status = "interrupted";
+      info.signal = signalName(s.signal);
+      checkpoint();
+    }
+    bar.finish();
+    if (res.status != RunStatus::Interrupted) {
+      outputs->finish(sim, res.status == RunStatus::Completed);
+      if (res.status == RunStatus::Completed)
+        writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
+    }
+    record();
+    writeSummaryJson(summaryFile, sim, info);
+  } catch (const WriteError& e) {
+    writeFailed(e);
+  } catch (const fs::filesystem_error& e) { // a folder an output creates
+    writeFailed(WriteError(e.path1().string(), e.code().message()));
   }
-  bar.finish();
-  outputs.finish(sim, res.ok);
-  res.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  info.wallSeconds = res.wallSeconds;
-  info.outputs = outputs.reports();
-  for (const auto& o : info.outputs) res.files.insert(res.files.end(), o.files.begin(), o.files.end());
-  res.files.push_back("summary.json");
-  if (res.ok) writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
-  writeSummaryJson((fs::path(res.outDir) / "summary.json").string(), sim, info);
+  res.ok = res.status == RunStatus::Completed;
   return res;
 }
 

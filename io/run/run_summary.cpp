@@ -3,7 +3,6 @@
 #include "io/common/atomic_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -44,6 +43,8 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   j << "{\n";
   j << "  \"scene\": " << jsonString(info.scene) << ",\n";
   j << "  \"status\": " << jsonString(info.status) << ",\n";
+  if (!info.signal.empty())
+    j << "  \"interrupted_by\": " << jsonString(info.signal) << ",\n  \"checkpoint\": \"checkpoint.h5\",\n";
   j << "  \"steps\": " << sim.steps() << ",\n";
   j << "  \"simulated_time\": " << num(sim.time()) << ",\n";
   j << "  \"wall_seconds\": " << num(info.wallSeconds) << ",\n";
@@ -93,9 +94,7 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
     for (const auto& [key, value] : o.summary) j << ",\n  " << jsonString(key) << ": " << value;
   j << "\n}\n";
   writeAtomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << j.str();
-    if (!out) throw std::runtime_error("cannot write " + path);
+    writeFileBytes(tmp, j.str());
   });
 }
 

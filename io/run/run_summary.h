@@ -14,7 +14,8 @@ struct RunInfo {
   double wallSeconds = 0;
   int threads = 1;
   std::vector<std::string> materialNames;
-  std::string status = "completed"; ///< or "failed: ..." when a guard stopped the run
+  std::string status = "completed"; ///< "failed: ...", or "interrupted" by a signal
+  std::string signal;               ///< the signal that interrupted the run ("SIGTERM")
   std::vector<OutputReport> outputs;
 };
 

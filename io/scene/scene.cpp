@@ -318,6 +318,21 @@ RunContext SceneSetup::runContext() const {
 }
 
 namespace {
+std::string sceneHash(const std::string& text, const std::vector<std::string>& overrides) {
+  uint64_t h = 1469598103934665603ull;
+  auto byte = [&](unsigned char c) { h = (h ^ c) * 1099511628211ull; };
+  auto add = [&](const std::string& s) {
+    // Length first, so the text and the overrides cannot run into each other.
+    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(uint64_t(s.size()) >> (8 * i)));
+    for (unsigned char c : s) byte(c);
+  };
+  add(text);
+  for (const auto& o : overrides) add(o);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
 /// Overrides first, so `--set avaframe.release_thickness=2` reaches the AvaFrame folder's bodies.
 SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) applyOverride(root, o);
@@ -330,12 +345,18 @@ SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides) {
 } // namespace
 
 SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
-  return build(*readTomlFile(path), overrides);
+  std::string text;
+  auto root = readTomlFile(path, &text);
+  SceneSetup s = build(*root, overrides);
+  s.hash = sceneHash(text, overrides);
+  return s;
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides) {
-  return build(*readTomlString(text, name), overrides);
+  SceneSetup s = build(*readTomlString(text, name), overrides);
+  s.hash = sceneHash(text, overrides);
+  return s;
 }
 
 } // namespace talus

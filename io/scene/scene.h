@@ -30,6 +30,9 @@ struct SceneSetup {
   /// the ground as simulated, i.e. after smoothing, with releases from a post-event DEM carved
   /// out and fixed layers added.
   std::shared_ptr<const DemRaster> dem;
+  /// 16 hex digits identifying the scene as loaded: FNV-1a over its text and the --set
+  /// overrides. A checkpoint is resumed only by the scene it was written for.
+  std::string hash;
   /// What the reader did that a user may want to know (terrain built or reused, cells filled).
   std::vector<std::string> notes;
 

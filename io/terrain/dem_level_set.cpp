@@ -1,5 +1,6 @@
 #include "io/terrain/dem_level_set.h"
 
+#include "io/common/atomic_file.h"
 #include "io/common/resource_limits.h"
 
 #include <openvdb/openvdb.h>
@@ -269,17 +270,13 @@ LevelSetBuildStats buildDemLevelSet(const HeightField& surface, const LevelSetBu
   stats.buildSeconds = since(t0);
 
   const auto t1 = Clock::now();
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  try {
-    io::File file(tmp);
-    file.write(GridPtrVec{grid});
-    file.close();
-    std::filesystem::rename(tmp, path);
-  } catch (const std::exception& e) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error(path + ": cannot write the level set (" + e.what() + ")");
-  }
+  writeAtomically(path, [&](const std::string& tmp) {
+    writeThroughMemory(tmp, [&](const std::string& scratch) {
+      io::File file(scratch);
+      file.write(GridPtrVec{grid});
+      file.close();
+    });
+  }, ".tmp." + std::to_string(::getpid())); // two runs may build the same cache file at once
   stats.writeSeconds = since(t1);
   stats.fileBytes = size_t(std::filesystem::file_size(path));
   return stats;

@@ -1,12 +1,16 @@
 #include "io/terrain/dem_raster.h"
 
 #include "io/common/geotiff_writer.h"
+#include "io/common/resource_limits.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cpl_conv.h>
 #include <cpl_error.h>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <gdal_alg.h>
 #include <gdal_priv.h>
 #include <limits>
@@ -36,6 +40,24 @@ struct DatasetCloser {
   void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
 };
 using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+/// GDAL reads a damaged token of an ESRI ASCII grid ("nan", "1.2.3", "12a") as 0 without a word:
+/// a wrong height. Every value after the header lines must be a finite number.
+void checkAsciiGridValues(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    std::istringstream tokens(line);
+    std::string t;
+    if (!(tokens >> t) || std::isalpha(static_cast<unsigned char>(t[0]))) continue; // header, blank
+    do {
+      char* end = nullptr;
+      const double v = std::strtod(t.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(v) || t.find_first_of("xXnNiI") != std::string::npos)
+        throw InputError(path, "line " + std::to_string(n) + ": '" + t.substr(0, 20) + "' is not a number");
+    } while (tokens >> t);
+  }
+}
 
 } // namespace
 
@@ -90,13 +112,15 @@ DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t
     throw InputError(path, "not a raster GDAL can read" + (m.empty() ? "" : " (" + m + ")"));
   }
   if (ds->GetRasterCount() < 1) throw InputError(path, "the file holds no raster band");
+  if (std::string(ds->GetDriverName()) == "AAIGrid") checkAsciiGridValues(path);
   double gt[6];
   if (ds->GetGeoTransform(gt) != CE_None) throw InputError(path, "the raster has no georeferencing (geotransform)");
   if (gt[2] != 0 || gt[4] != 0)
     throw InputError(path, "rotated or sheared rasters are not supported (geotransform terms " +
                    std::to_string(gt[2]) + ", " + std::to_string(gt[4]) + "); warp it north-up first (gdalwarp)");
   const double cx = gt[1], cy = std::fabs(gt[5]);
-  if (!(cx > 0) || !(cy > 0)) throw InputError(path, "cell size must be positive");
+  if (!(cx > 0) || !(cy > 0) || !std::isfinite(cx) || !std::isfinite(cy))
+    throw InputError(path, "cell size must be positive and finite");
   if (std::fabs(cx - cy) > 1e-9 * cx)
     throw InputError(path, "cells are not square (" + std::to_string(cx) + " x " + std::to_string(cy) +
                    " m); resample it first (gdalwarp -tr D D)");
@@ -106,6 +130,12 @@ DemRaster readDem(const std::string& path, const DemReadOptions& options, size_t
   g.nx = ds->GetRasterXSize();
   g.ny = ds->GetRasterYSize();
   if (g.nx < 2 || g.ny < 2) throw InputError(path, "the raster must be at least 2 x 2 cells");
+  // A damaged header can claim any size: refuse before allocating it.
+  if (double(g.nx) * double(g.ny) > resourceLimits().maxRasterCells)
+    throw InputError(path, std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells, more than the limit of " +
+                               std::to_string(resourceLimits().maxRasterCells) + "; crop or resample it");
+  if (!std::isfinite(gt[0]) || !std::isfinite(gt[3]) || !std::isfinite(cx * g.nx) || !std::isfinite(cy * g.ny))
+    throw InputError(path, "the georeferencing is not finite");
   g.cellSize = cx;
   g.originX = gt[0];
   g.originY = gt[5] < 0 ? gt[3] : gt[3] + g.ny * cy; // south-up rasters are flipped below
@@ -168,20 +198,29 @@ size_t fillNodata(DemRaster& dem) {
   if (!ds) throw InputError(dem.sourcePath, "cannot allocate the fill buffer");
   std::vector<float> mask(g.size());
   for (size_t i = 0; i < g.size(); ++i) mask[i] = std::isnan(dem.height[i]) ? 0.f : 1.f;
-  std::vector<float> h(dem.height);
-  for (float& v : h)
-    if (std::isnan(v)) v = 0;
+  std::vector<float> h(dem.height); // holes stay NaN: a cell the search cannot reach stays NaN
   GDALRasterBand* hb = ds->GetRasterBand(1);
   GDALRasterBand* mb = ds->GetRasterBand(2);
   if (hb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None ||
       mb->RasterIO(GF_Write, 0, 0, g.nx, g.ny, mask.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
     throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
-  const double searchCells = double(std::max(g.nx, g.ny));
-  if (GDALFillNodata(GDALRasterBand::ToHandle(hb), GDALRasterBand::ToHandle(mb), searchCells, 0, 2, nullptr, nullptr,
-                     nullptr) != CE_None)
+  // The search costs time in proportion to its radius for every hole (a 4 x 45 000-cell raster
+  // of holes took minutes with the raster's length): capped, holes farther from data are refused.
+  const double searchCells = double(std::min(std::max(g.nx, g.ny), kMaxFillCells));
+  // GDAL's default work files are GeoTIFFs in the current folder, left behind when a run is
+  // killed; the DEM is in memory anyway.
+  const char* fillOptions[] = {"TEMP_FILE_DRIVER=MEM", nullptr};
+  if (GDALFillNodata(GDALRasterBand::ToHandle(hb), GDALRasterBand::ToHandle(mb), searchCells, 0, 2,
+                     const_cast<char**>(fillOptions), nullptr, nullptr) != CE_None)
     throw InputError(dem.sourcePath, "filling no-data failed (" + lastGdalMessage() + ")");
   if (hb->RasterIO(GF_Read, 0, 0, g.nx, g.ny, h.data(), g.nx, g.ny, GDT_Float32, 0, 0) != CE_None)
     throw InputError(dem.sourcePath, "cannot fill no-data (" + lastGdalMessage() + ")");
+  size_t unreached = 0;
+  for (size_t i = 0; i < g.size(); ++i) unreached += std::isnan(h[i]) || !std::isfinite(h[i]);
+  if (unreached > 0)
+    throw InputError(dem.sourcePath, std::to_string(unreached) + " no-data cells lie more than " +
+                                         std::to_string(kMaxFillCells) +
+                                         " cells from any valid cell and cannot be filled; crop the DEM");
   for (size_t i = 0; i < g.size(); ++i)
     if (std::isnan(dem.height[i])) dem.height[i] = h[i];
   return holes;

@@ -31,10 +31,13 @@ DemRaster readDem(const std::string& path, const DemReadOptions& options = {}, s
 /// Number of NaN cells.
 size_t countNodata(const DemRaster& dem);
 
+/// The search radius of fillNodata, in cells.
+inline constexpr int kMaxFillCells = 1000;
+
 /// Fills every NaN cell by GDAL's inverse-distance interpolation from the valid cells around
 /// it (GDALFillNodata, the algorithm of gdal_fillnodata, with a search radius spanning the
-/// raster and 2 smoothing passes over the filled cells only). Returns the number of cells
-/// filled. Throws InputError when no cell is valid.
+/// raster up to kMaxFillCells and 2 smoothing passes over the filled cells only). Returns the
+/// number of cells filled. Throws InputError when no cell is valid or a hole is out of reach.
 size_t fillNodata(DemRaster& dem);
 
 /// Gaussian smoothing of "radius" R metres: the Gaussian's 1/e^2 radius, i.e. sigma = R/2,

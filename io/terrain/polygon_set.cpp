@@ -18,6 +18,7 @@ struct QuietGdal {
   QuietGdal() { CPLPushErrorHandler(CPLQuietErrorHandler); CPLErrorReset(); }
   ~QuietGdal() { CPLPopErrorHandler(); }
 };
+constexpr double kMaxCoordinate = 1e9; // beyond any projected CRS on Earth
 struct DatasetCloser {
   void operator()(GDALDataset* d) const { GDALClose(GDALDataset::ToHandle(d)); }
 };
@@ -50,6 +51,11 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
         names += (names.empty() ? "" : ", ") + std::string(layer->GetLayerDefn()->GetFieldDefn(i)->GetNameRef());
       throw InputError(path, "no attribute '" + attribute + "' (attributes: " + (names.empty() ? "none" : names) + ")");
     }
+    // A text field would read as 0 everywhere: a thickness silently lost.
+    const OGRFieldType type = layer->GetLayerDefn()->GetFieldDefn(field)->GetType();
+    if (type != OFTReal && type != OFTInteger && type != OFTInteger64)
+      throw InputError(path, "attribute '" + attribute + "' is a " + OGRFieldDefn::GetFieldTypeName(type) +
+                                 " field, not a number");
   }
   layer->ResetReading();
   for (auto& feat : *layer) {
@@ -62,10 +68,11 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
       for (const auto* p : *geom->toMultiPolygon()) polys.push_back(p);
     else continue;
     double v = 0;
+    const std::string which = "feature " + std::to_string(feat->GetFID());
     if (field >= 0) {
-      if (!feat->IsFieldSetAndNotNull(field))
-        throw InputError(path, "feature " + std::to_string(feat->GetFID()) + " has no value for '" + attribute + "'");
+      if (!feat->IsFieldSetAndNotNull(field)) throw InputError(path, which + " has no value for '" + attribute + "'");
       v = feat->GetFieldAsDouble(field);
+      if (!std::isfinite(v)) throw InputError(path, which + ": '" + attribute + "' is not a finite number");
     }
     const int fi = int(ps.values_.size());
     ps.values_.push_back(v);
@@ -73,6 +80,11 @@ PolygonSet PolygonSet::read(const std::string& path, const std::string& attribut
       ps.area_ += poly->get_Area();
       for (const auto* ring : *poly) {
         const int n = ring->getNumPoints();
+        // A damaged file can hold NaN or infinite vertices; the edge index cannot bucket them.
+        for (int k = 0; k < n; ++k)
+          if (!std::isfinite(ring->getX(k)) || !std::isfinite(ring->getY(k)) || std::fabs(ring->getX(k)) > kMaxCoordinate ||
+              std::fabs(ring->getY(k)) > kMaxCoordinate)
+            throw InputError(path, which + " has a vertex that is not a finite coordinate below 1e9 m");
         for (int k = 0; k + 1 < n; ++k)
           ps.edges_.push_back({ring->getX(k), ring->getY(k), ring->getX(k + 1), ring->getY(k + 1), fi});
         if (n > 1 && (ring->getX(0) != ring->getX(n - 1) || ring->getY(0) != ring->getY(n - 1)))

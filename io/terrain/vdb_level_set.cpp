@@ -1,10 +1,18 @@
 #include "io/terrain/vdb_level_set.h"
 
+#include "io/terrain/vdb_file_check.h"
+
 #include <openvdb/openvdb.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/Interpolation.h>
+#include <cmath>
+#include <fstream>
+#include <ios>
 #include <stdexcept>
 
 namespace talus {
+
+extern const bool kVdbBloscGuard; // vdb_blosc_guard.cpp: OpenVDB's blosc reader, with length checks
 
 struct VdbLevelSet::Impl {
   openvdb::FloatGrid::Ptr grid;
@@ -13,28 +21,52 @@ struct VdbLevelSet::Impl {
 VdbLevelSet::VdbLevelSet(const std::string& path, const std::string& gridName, const Vec3d& origin)
     : impl_(std::make_unique<Impl>()), origin_(origin), path_(path) {
   openvdb::initialize();
+  if (!kVdbBloscGuard) throw std::logic_error("the blosc guard is not linked");
+  checkVdbFile(path);
   try {
-    openvdb::io::File file(path);
-    file.open();
-    openvdb::GridBase::Ptr base;
-    if (!gridName.empty()) {
-      if (!file.hasGrid(gridName)) throw std::runtime_error("no grid named '" + gridName + "'");
-      base = file.readGrid(gridName);
-    } else {
-      for (auto it = file.beginName(); it != file.endName(); ++it) {
-        auto g = file.readGrid(it.gridName());
-        if (openvdb::gridPtrCast<openvdb::FloatGrid>(g)) {
-          base = g;
-          break;
-        }
-      }
+    // Read as a stream that throws at the first read past the end, so a damaged count inside a
+    // tree stops at the file's end instead of looping over garbage.
+    std::ifstream in(path, std::ios::binary);
+    in.exceptions(std::ios::failbit | std::ios::badbit);
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
+    bool named = false;
+    for (const auto& g : *stream.getGrids()) {
+      if (!gridName.empty() && g->getName() != gridName) continue;
+      named = true;
+      impl_->grid = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
+      if (impl_->grid || !gridName.empty()) break;
     }
-    file.close();
-    impl_->grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (!impl_->grid) throw std::runtime_error("no float level-set grid found");
+    if (!gridName.empty() && !named) throw std::runtime_error("no grid named '" + printable(gridName) + "'");
+    if (!impl_->grid)
+      throw std::runtime_error(gridName.empty() ? "no float grid found" : "grid '" + gridName + "' is not a float grid");
   } catch (const openvdb::Exception& e) {
-    throw std::runtime_error(e.what());
+    throw std::runtime_error("OpenVDB cannot read it: " + printable(e.what(), 200));
+  } catch (const std::ios_base::failure&) {
+    throw std::runtime_error("truncated or damaged: OpenVDB read past the end of a grid");
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("damaged: a size in the file asks for more memory than there is");
   }
+  check();
+}
+
+void VdbLevelSet::check() const {
+  // What every signed distance below relies on: a linear, uniform transform, a positive
+  // background (outside), finite values and something inside.
+  const openvdb::FloatGrid& g = *impl_->grid;
+  const std::string name = "grid '" + printable(g.getName()) + "'";
+  if (g.getGridClass() == openvdb::GRID_FOG_VOLUME) throw std::runtime_error(name + " is a fog volume, not a level set");
+  const openvdb::math::Transform& xf = g.transform();
+  const openvdb::Vec3d v = g.voxelSize();
+  if (!xf.isLinear() || !xf.hasUniformScale() || !(v[0] > 0) || !std::isfinite(v[0]))
+    throw std::runtime_error(name + " has no uniform voxel size (a linear transform with equal, positive scales)");
+  if (!(g.background() > 0) || !std::isfinite(g.background()))
+    throw std::runtime_error(name + " is not a level set: its background (the distance outside) must be positive");
+  if (g.activeVoxelCount() == 0) throw std::runtime_error(name + " holds no active voxels");
+  for (auto it = g.cbeginValueAll(); it; ++it)
+    if (!std::isfinite(*it)) throw std::runtime_error(name + " holds a value that is not finite");
+  bool inside = false;
+  for (auto it = g.cbeginValueOn(); it && !inside; ++it) inside = *it <= 0;
+  if (!inside) throw std::runtime_error(name + " has no voxel at or below zero: nothing is inside it");
 }
 
 VdbLevelSet::~VdbLevelSet() = default;

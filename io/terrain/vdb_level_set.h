@@ -12,7 +12,10 @@ namespace talus {
 class VdbLevelSet final : public Sdf {
 public:
   /// Reads the float grid `gridName` (or the first float grid when empty) from `path`.
-  /// `origin` is the world position of the simulation's local frame. Throws std::runtime_error.
+  /// `origin` is the world position of the simulation's local frame. Throws std::runtime_error
+  /// for a file OpenVDB cannot read and for a grid that is not a usable level set (a fog volume,
+  /// a non-uniform transform, a background <= 0, no active voxels, non-finite values, nothing
+  /// inside).
   VdbLevelSet(const std::string& path, const std::string& gridName, const Vec3d& origin);
   ~VdbLevelSet() override;
 
@@ -28,6 +31,7 @@ public:
   std::string metadata(const std::string& key) const;
 
 private:
+  void check() const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Vec3d origin_;
