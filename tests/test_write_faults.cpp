@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 using namespace talus;
 
@@ -51,7 +52,8 @@ std::vector<std::string> runArgs(const std::string& scene, const std::string& ou
 /// The uninterrupted run every faulty one is compared with (run once).
 const std::string& straightRun() {
   static const std::string dir = [] {
-    const std::string d = test::tempDir("write_faults_straight");
+    // Per process: ctest runs the parameterised cases of this file in parallel processes.
+    const std::string d = test::tempDir("write_faults_straight_" + std::to_string(::getpid()));
     const test::Exit e = test::runTalusProcess(runArgs(writeScene(d), d + "/out"), d + "/log");
     EXPECT_EQ(e.code, 0) << e.log;
     return d + "/out";
