@@ -129,4 +129,13 @@ inline std::vector<std::string> filesEndingIn(const std::string& dir, const std:
   return out;
 }
 
+/// The fault tests' scene: a rock sphere thrown at the floor of a 3 x 1 x 2 m box at dx 0.1 m,
+/// run for `endTime` s, with `output` as the body of its [output] table.
+inline std::string rockThrowScene(const std::string& endTime, const std::string& radius, const std::string& output) {
+  return "\n[simulation]\ndx = 0.1\nend_time = " + endTime +
+         "\n[domain]\nmin = [0, 0, 0]\nmax = [3, 1, 2]\nwalls = \"slip\"\n[[materials]]\nname = \"rock\"\n"
+         "preset = \"rock\"\n[[bodies]]\nmaterial = \"rock\"\nshape = \"sphere\"\ncenter = [2.2, 0.5, 1.0]\nradius = " +
+         radius + "\nvelocity = [-6, 0, -4]\n[output]\n" + output;
+}
+
 } // namespace talus::test

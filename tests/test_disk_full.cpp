@@ -17,29 +17,8 @@ using namespace talus;
 
 namespace {
 
-const char* kScene = R"(
-[simulation]
-dx = 0.1
-end_time = 0.6
-[domain]
-min = [0, 0, 0]
-max = [3, 1, 2]
-walls = "slip"
-[[materials]]
-name = "rock"
-preset = "rock"
-[[bodies]]
-material = "rock"
-shape = "sphere"
-center = [2.2, 0.5, 1.0]
-radius = 0.3
-velocity = [-6, 0, -4]
-[output]
-frame_interval = 0.05
-checkpoint_interval = 0.1
-ply = true
-maps = { cell_size = 0.2 }
-)";
+const char* kOutput = "frame_interval = 0.05\ncheckpoint_interval = 0.1\nply = true\nmaps = { cell_size = 0.2 }\n";
+const std::string kScene = test::rockThrowScene("0.6", "0.3", kOutput);
 
 /// A tmpfs at `dir`, visible to this process and its children only.
 class Tmpfs {
@@ -120,8 +99,7 @@ TEST(DiskFull, ARunFillingATmpfsStopsAndResumesOnceSpaceIsFreed) {
 
 TEST(DiskFull, AFolderTurnedReadOnlyMidRunIsNamedAndTheCheckpointKept) {
   const std::string dir = test::tempDir("disk_readonly");
-  std::string slow = kScene;
-  slow.replace(slow.find("end_time = 0.6"), 14, "end_time = 6.0");
+  const std::string slow = test::rockThrowScene("6.0", "0.3", kOutput);
   std::ofstream(dir + "/scene.toml") << slow;
   std::filesystem::create_directories(dir + "/disk");
   Tmpfs disk(dir + "/disk", size_t(256) << 20);

@@ -14,29 +14,8 @@ using namespace talus;
 namespace {
 
 // About 3 s on two threads when left alone: long enough to be interrupted after a frame.
-const char* kScene = R"(
-[simulation]
-dx = 0.1
-end_time = 2
-[domain]
-min = [0, 0, 0]
-max = [3, 1, 2]
-walls = "slip"
-[[materials]]
-name = "rock"
-preset = "rock"
-[[bodies]]
-material = "rock"
-shape = "sphere"
-center = [2.2, 0.5, 1.0]
-radius = 0.25
-velocity = [-6, 0, -4]
-[output]
-frame_interval = 0.25
-checkpoint_interval = 0
-vdb = false
-maps = { cell_size = 0.2 }
-)";
+const char* kOutput = "frame_interval = 0.25\ncheckpoint_interval = 0\nvdb = false\nmaps = { cell_size = 0.2 }\n";
+const std::string kScene = test::rockThrowScene("2", "0.25", kOutput);
 
 std::string setUp(const std::string& name) {
   const std::string dir = test::tempDir(name);

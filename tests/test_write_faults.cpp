@@ -16,29 +16,8 @@ using namespace talus;
 
 namespace {
 
-const char* kScene = R"(
-[simulation]
-dx = 0.1
-end_time = 0.3
-[domain]
-min = [0, 0, 0]
-max = [3, 1, 2]
-walls = "slip"
-[[materials]]
-name = "rock"
-preset = "rock"
-[[bodies]]
-material = "rock"
-shape = "sphere"
-center = [2.2, 0.5, 1.0]
-radius = 0.25
-velocity = [-6, 0, -4]
-[output]
-frame_interval = 0.1
-checkpoint_interval = 0.08
-ply = true
-maps = { cell_size = 0.2 }
-)";
+const char* kOutput = "frame_interval = 0.1\ncheckpoint_interval = 0.08\nply = true\nmaps = { cell_size = 0.2 }\n";
+const std::string kScene = test::rockThrowScene("0.3", "0.25", kOutput);
 
 std::string writeScene(const std::string& dir) {
   std::ofstream(dir + "/scene.toml") << kScene;
@@ -160,8 +139,7 @@ TEST(WriteFaults, AFileSizeLimitInsideACheckpointIsAnErrorNotACrash) {
 
 TEST(WriteFaults, AnOutputFolderRemovedDuringTheRunIsNamed) {
   const std::string dir = test::tempDir("write_faults_removed"), out = dir + "/out";
-  std::string slow = kScene;
-  slow.replace(slow.find("end_time = 0.3"), 14, "end_time = 3.0");
+  const std::string slow = test::rockThrowScene("3.0", "0.25", kOutput);
   std::ofstream(dir + "/scene.toml") << slow;
   test::TalusProcess p(runArgs(dir + "/scene.toml", out), dir + "/log");
   ASSERT_TRUE(p.waitForFile(out + "/frames/particles_00001.h5"));

@@ -14,7 +14,7 @@ build="${TALUS_BUILD_DIR:-$root/build}"
 packages=(
   cmake ninja-build g++ pkg-config ccache
   libopenvdb-dev libblosc-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
-  libhdf5-dev libgtest-dev libtomlplusplus-dev libcli11-dev
+  libhdf5-dev zlib1g-dev libgtest-dev libtomlplusplus-dev libcli11-dev
   libgdal-dev gdal-bin libcairo2-dev
   clang libclang-rt-14-dev
 )
