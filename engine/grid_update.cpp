@@ -7,16 +7,18 @@ namespace talus {
 
 namespace {
 
-/// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
-/// from the material, N s) and its moment about `ref`.
 /// The contact nodes' velocities under the collider's law, or, where materials with their own
 /// basal law have mass, the mass-weighted mean of every law's result.
 void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, const float* extra, int channels,
                const Vec4* nodes, ContactBatch& batch, const ContactStep& step) {
+  // Mass of material law m at contact node i (P2G's extra channel), and its share of the node.
+  auto massOf = [&](int i, const MaterialLaw& m) {
+    return extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)];
+  };
+  auto share = [&](int i, const MaterialLaw& m) { return Real(massOf(i, m)) / nodes[batch.node[i]][0]; };
   bool mixed = false;
   for (int i = 0; i < batch.count && !mixed; ++i)
-    for (const MaterialLaw& m : laws)
-      mixed |= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] > 0.f;
+    for (const MaterialLaw& m : laws) mixed |= massOf(i, m) > 0.f;
   if (!mixed) {
     own.apply(batch.contact, batch.count, step);
     return;
@@ -25,22 +27,20 @@ void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, cons
   own.apply(batch.contact, batch.count, step);
   for (int i = 0; i < batch.count; ++i) {
     Real rest = Real(1);
-    for (const MaterialLaw& m : laws)
-      rest -= extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
+    for (const MaterialLaw& m : laws) rest -= share(i, m);
     batch.mixed[i] = std::max(rest, Real(0)) * batch.contact[i].v;
   }
   for (const MaterialLaw& m : laws) {
     std::copy(batch.original, batch.original + batch.count, batch.contact);
     for (int i = 0; i < batch.count; ++i) batch.contact[i].params = nullptr; // the region's are the collider law's
     m.law->apply(batch.contact, batch.count, step);
-    for (int i = 0; i < batch.count; ++i) {
-      const Real f = extra[size_t(batch.node[i]) * size_t(channels) + size_t(m.channel)] / nodes[batch.node[i]][0];
-      batch.mixed[i] += f * batch.contact[i].v;
-    }
+    for (int i = 0; i < batch.count; ++i) batch.mixed[i] += share(i, m) * batch.contact[i].v;
   }
   for (int i = 0; i < batch.count; ++i) batch.contact[i].v = batch.mixed[i];
 }
 
+/// Applies one collider to the nodes of block b and returns the impulse it took (momentum removed
+/// from the material, N s) and its moment about `ref`.
 void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
                    const Vec3d& ref, const FlowColumns::BlockLines* lines, const std::vector<MaterialLaw>& laws,
                    const float* extra, int channels, Vec4* nodes, ContactBatch& batch, double* acc) {
