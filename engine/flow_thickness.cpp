@@ -13,11 +13,14 @@ inline int lineIndex(int n, int axis) {
 }
 } // namespace
 
-uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) {
+/// The block of the line through block c along `axis`: c with that coordinate zeroed.
+static BlockCoord lineBlock(const BlockCoord& c, int axis) {
   BlockCoord k = c;
   (axis == 0 ? k.x : axis == 1 ? k.y : k.z) = 0;
-  return blockKey(k);
+  return k;
 }
+
+uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) { return blockKey(lineBlock(c, axis)); }
 
 void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
   for (auto& l : lines_) l.clear();
@@ -34,8 +37,7 @@ void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
       for (int a = 0; a < 3; ++a) {
         if (!L[a]) {
           L[a] = &lines_[a][lineKey(c, a)];
-          L[a]->at = c;
-          (a == 0 ? L[a]->at.x : a == 1 ? L[a]->at.y : L[a]->at.z) = 0;
+          L[a]->at = lineBlock(c, a);
         }
         L[a]->volume[lineIndex(n, a)] += v;
         L[a]->mass[lineIndex(n, a)] += float(nodes[n][0]);
