@@ -12,7 +12,8 @@ constexpr size_t kChunk = 4096; // fixed chunking keeps results independent of t
 size_t chunkCount(size_t n) { return (n + kChunk - 1) / kChunk; }
 } // namespace
 
-void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, const Periodicity* periodic) {
+void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, ReorderScratch& scratch,
+                  const Periodicity* periodic) {
   const Real invDx = Real(1) / grid.dx;
 
   // 1. Owning blocks. Particles are mostly sorted already, so runs of equal blocks are long
@@ -35,43 +36,61 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, c
   grid.topology.rebuild(owning);
   const size_t nBlocks = grid.topology.size();
 
-  // 2. Per group: block index per particle, stable counting sort, reorder if needed.
+  // 2. Per group: block index per particle, stable counting sort, reorder if needed. Each chunk
+  //    records its runs of equal blocks; the counts and each run's place in the sorted order come
+  //    from one serial pass over the runs (few: particles are mostly sorted), so the per-particle
+  //    work is parallel and the permutation is the serial counting sort's, at any thread count.
+  struct Run {
+    uint32_t block, count, to = 0; // `to`: the run's first index in the sorted order
+  };
   std::vector<uint32_t> particleCount(nBlocks, 0);
   for (MaterialGroup* g : groups) {
     auto& x = g->particles.x;
     const size_t n = x.size();
-    std::vector<uint32_t> blockOf(n);
-    std::vector<uint8_t> sortedChunk(chunkCount(n), 1);
-    tbb::parallel_for(size_t(0), sortedChunk.size(), [&](size_t c) {
+    auto& blockOf = scratch.blockOf;
+    blockOf.resize(n);
+    std::vector<std::vector<Run>> runs(chunkCount(n));
+    tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
       BlockTopology::Lookup lookup(grid.topology);
       const size_t end = std::min(n, (c + 1) * kChunk);
       BlockCoord last{INT32_MIN, 0, 0};
-      int32_t lastIndex = -1;
+      uint32_t lastIndex = 0;
       for (size_t p = c * kChunk; p < end; ++p) {
         const BlockCoord b = owningBlock(x[p], invDx);
-        if (b != last) last = b, lastIndex = lookup.find(b);
-        blockOf[p] = uint32_t(lastIndex);
-        if (p > c * kChunk && blockOf[p] < blockOf[p - 1]) sortedChunk[c] = 0;
+        if (b != last) last = b, lastIndex = uint32_t(lookup.find(b));
+        if (runs[c].empty() || runs[c].back().block != lastIndex) runs[c].push_back({lastIndex, 0});
+        blockOf[p] = lastIndex;
+        ++runs[c].back().count;
       }
     });
-    bool sorted = true;
-    for (size_t c = 0; c < sortedChunk.size(); ++c) {
-      if (!sortedChunk[c]) sorted = false;
-      if (c > 0 && blockOf[c * kChunk] < blockOf[c * kChunk - 1]) sorted = false;
-    }
 
     auto& start = g->blockStart;
     start.assign(nBlocks + 1, 0);
-    for (size_t p = 0; p < n; ++p) ++start[blockOf[p] + 1];
+    bool sorted = true;
+    uint32_t previous = 0;
+    for (const auto& chunk : runs)
+      for (const Run& r : chunk) {
+        start[r.block + 1] += r.count;
+        sorted = sorted && r.block >= previous;
+        previous = r.block;
+      }
     for (size_t b = 0; b < nBlocks; ++b) {
       particleCount[b] += start[b + 1];
       start[b + 1] += start[b];
     }
     if (!sorted) {
-      std::vector<uint32_t> perm(n), cursor(start.begin(), start.end() - 1);
-      for (size_t p = 0; p < n; ++p) perm[cursor[blockOf[p]]++] = uint32_t(p);
-      g->particles.forEachArray([&](auto& a) { gatherInPlace(a, perm); });
-      g->permuteState(perm);
+      std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+      for (auto& chunk : runs)
+        for (Run& r : chunk) r.to = cursor[r.block], cursor[r.block] += r.count;
+      auto& perm = scratch.perm;
+      perm.resize(n);
+      tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
+        uint32_t p = uint32_t(c * kChunk);
+        for (const Run& r : runs[c])
+          for (uint32_t i = 0; i < r.count; ++i) perm[r.to + i] = p++;
+      });
+      g->particles.forEachArray([&](auto& a) { gatherInPlace(a, perm, scratch); });
+      g->permuteState(perm, scratch);
     }
   }
 

@@ -13,6 +13,8 @@ namespace talus {
 /// owning block (physically reordering their arrays), fills each group's blockStart, the
 /// grid's owning-block list and colour lists, and zeroes the node arrays.
 /// With `periodic`, the images of blocks holding ghost nodes are made active too.
-void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, const Periodicity* periodic = nullptr);
+/// @param scratch  buffers kept between steps (the caller owns them; contents are not read)
+void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, ReorderScratch& scratch,
+                  const Periodicity* periodic = nullptr);
 
 } // namespace talus

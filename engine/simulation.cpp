@@ -115,7 +115,7 @@ double Simulation::step(double dtCap) {
   const Real rdt = Real(dt);
   {
     ScopedTimer t(times_.bin);
-    binParticles(groupPtrs_, grid_, &periodic_);
+    binParticles(groupPtrs_, grid_, reorder_, &periodic_);
   }
   {
     ScopedTimer t(times_.colliders);

@@ -131,6 +131,8 @@ public:
   /// Bytes held by particles (including model state) and by the grid and terrain cache.
   size_t particleBytes() const;
   size_t gridBytes() const;
+  /// Bytes of the buffers binning keeps between steps (about 44 per particle of the largest group).
+  size_t scratchBytes() const { return reorder_.bytes(); }
 
   /// Everything needed to continue the run bit for bit: clock, counters, speeds, mass ledger and
   /// every group's particles and model state (groups are matched by name and model).
@@ -147,6 +149,7 @@ private:
   std::vector<std::unique_ptr<MaterialGroup>> groups_;
   std::vector<MaterialGroup*> groupPtrs_;
   SparseGrid grid_;
+  ReorderScratch reorder_; ///< binning buffers kept between steps
   std::vector<std::unique_ptr<Collider>> colliders_;
   std::vector<Collider*> colliderPtrs_;
   std::vector<ColliderLoad> loads_;

@@ -78,7 +78,9 @@ public:
   }
   size_t stateSize() const override { return dJ.size(); }
 
-  void permuteState(const std::vector<uint32_t>& perm) override { gatherInPlace(dJ, perm); }
+  void permuteState(const std::vector<uint32_t>& perm, ReorderScratch& scratch) override {
+    gatherInPlace(dJ, perm, scratch);
+  }
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }
   void resizeState(size_t n) override { dJ.resize(n, 0.0f); }
   size_t stateBytesPerParticle() const override { return sizeof(float); }

@@ -39,9 +39,9 @@ public:
   }
   size_t stateSize() const override { return F.size() == state.size() ? F.size() : size_t(-1); }
 
-  void permuteState(const std::vector<uint32_t>& perm) override {
-    gatherInPlace(F, perm);
-    gatherInPlace(state, perm);
+  void permuteState(const std::vector<uint32_t>& perm, ReorderScratch& scratch) override {
+    gatherInPlace(F, perm, scratch);
+    gatherInPlace(state, perm, scratch);
   }
   void compactState(const std::vector<uint8_t>& keep) override {
     compactInPlace(F, keep);

@@ -43,9 +43,10 @@ std::unique_ptr<SolidGroup<ElasticModel>> scattered(size_t n, unsigned seed) {
 TEST(Kernels, BinningPartitionsParticlesByOwningBlockAndIsStable) {
   auto g = scattered(20000, 1);
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   const auto& start = g->blockStart;
   ASSERT_EQ(start.size(), grid.blockCount() + 1);
   EXPECT_EQ(start.front(), 0u);
@@ -75,7 +76,7 @@ TEST(Kernels, BinningPartitionsParticlesByOwningBlockAndIsStable) {
   EXPECT_EQ(owning, grid.owning.size());
   // Binning the binned set again changes nothing (the sorted fast path).
   const auto x = g->particles.x;
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   EXPECT_EQ(g->particles.x, x);
 }
 
@@ -90,9 +91,10 @@ TEST(Kernels, P2GWeightsSumToOneAndConserveMassAndMomentum) {
                                Real(1e3 * u(rng)), Real(1e3 * u(rng))};
   }
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   particlesToGrid(groups, grid, Real(1e-3));
   double gm = 0, pm = 0;
   Vec3d gq = Vec3d::Zero(), pq = Vec3d::Zero();
@@ -111,9 +113,10 @@ TEST(Kernels, P2GSpreadsOneParticleWithTheQuadraticWeights) {
   g->particles.x[0] = x;
   g->particles.mass[0] = 2;
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   particlesToGrid(groups, grid, Real(1e-3));
   const QuadraticStencil s(x / Real(kDx));
   BlockTopology::Lookup lookup(grid.topology);
@@ -135,9 +138,10 @@ TEST(Kernels, G2PReproducesAnAffineVelocityFieldExactly) {
   // APIC with quadratic B-splines is exact for affine fields: v_p = a + B x_p and C_p = B.
   auto g = scattered(3000, 5);
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   const Vec3d a(0.3, -0.2, 0.1);
   Mat3d B;
   B << 0.5, -1.0, 0.25, 2.0, 0.1, -0.3, -0.7, 0.4, 0.2;
@@ -168,9 +172,10 @@ TEST(Kernels, G2PCountsANonFiniteStressInTheStepThatMadeIt) {
   auto g = scattered(10, 6);
   for (size_t p = 0; p < 10; ++p) g->particles.x[p] = Vec3(Real(0.1 + 0.02 * double(p)), Real(0.2), Real(0.3)); // one block
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   std::vector<Vec4> buf(kPadNodes, Vec4(1, 0, 0, 0));
   const uint32_t b = grid.owning[0];
   const BlockCoord& c = grid.topology.coord(b);
@@ -197,11 +202,12 @@ TEST(Kernels, GridUpdateMixesMaterialLawsByTheirMassAtANode) {
   }
   a->particles.mass[0] = 3, b->particles.mass[0] = 1;
   SparseGrid grid;
+  ReorderScratch scratch;
   grid.dx = Real(kDx);
   grid.extraChannels = 1;
   grid.extraOf = {{}, {{0, 1.f}}}; // channel 0: the sticky material's node mass
   std::vector<MaterialGroup*> groups{a.get(), b.get()};
-  binParticles(groups, grid);
+  binParticles(groups, grid, scratch);
   particlesToGrid(groups, grid, Real(1e-3));
   Collider floor = Collider::face("z_min", 2, false, 0.0, makeContactLaw(CoulombLaw{Real(0.2)}));
   floor.prepare(grid.topology, kDx, 0.0);

@@ -76,7 +76,7 @@ name = "beads"
 model = "mu_i"
 grain_diameter = 1e-2
 density = %.12g
-youngs_modulus = 5e4  # elastic strain under the 0.6 kPa base stress ~1%: a 2x longer step
+youngs_modulus = 5e4  # elastic strain under the 0.6 kPa base stress ~1 %%: a 2x longer step
 poisson_ratio = 0.3
 [[bodies]]
 material = "beads"

@@ -22,7 +22,7 @@ struct BenchResult {
   int steps = 0;
   double particleStepsPerSecond = 0;
   double binShare = 0, p2gShare = 0, gridShare = 0, g2pShare = 0, otherShare = 0; ///< of wall time
-  double bytesPerParticle = 0, bytesPerBlock = 0;
+  double bytesPerParticle = 0, scratchBytesPerParticle = 0, bytesPerBlock = 0;
   double secondsPerStep = 0;
   double efficiency = 0; ///< against the 1-thread run of the same case (0 when none)
 };
