@@ -15,6 +15,7 @@
 #include "engine/contact_law.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace talus {
 
@@ -26,10 +27,22 @@ struct SamosAtLaw {
   Real mu = Real(0.155), tau0 = 0, rs0 = Real(0.222), kappa = Real(0.43), roughness = Real(0.05), b = Real(4.13);
 
   /// tau / sigma at speed u for basal normal stress sigma (Pa), density rho and thickness h.
+  /// What does not depend on u (the logarithm above all) is computed once per node: the implicit
+  /// solve evaluates the shear about ten times per node.
+  struct Shear {
+    double mu, rs0, rho, minShearOverSigma, sigmaPlus, turbulentDenominator;
+    Shear(double sigma, double rho, double h, const double p[6])
+        : mu(p[0]), rs0(p[2]), rho(rho), minShearOverSigma(p[1] / sigma), sigmaPlus(sigma + 0.001) {
+      const double div = std::log(std::max(h / p[4], 1.0)) / p[3] + p[5];
+      turbulentDenominator = div * div * sigma;
+    }
+    double operator()(double u) const {
+      const double rs = rho * u * u / sigmaPlus;
+      return minShearOverSigma + mu * (1 + rs0 / (rs0 + rs)) + rho * u * u / turbulentDenominator;
+    }
+  };
   static double shearOverNormal(double u, double sigma, double rho, double h, const double p[6]) {
-    const double rs = rho * u * u / (sigma + 0.001);
-    const double div = std::log(std::max(h / p[4], 1.0)) / p[3] + p[5];
-    return p[1] / sigma + p[0] * (1 + p[2] / (p[2] + rs)) + rho * u * u / (div * div * sigma);
+    return Shear(sigma, rho, h, p)(u);
   }
 
   void apply(ContactNode& c, const ContactStep& s) const {
@@ -42,7 +55,8 @@ struct SamosAtLaw {
       slideImplicitly(c, [&](double) { return p[0]; });
       return;
     }
-    slideImplicitly(c, [&](double u) { return shearOverNormal(u, sigma, double(c.rho), double(c.h), p); });
+    const Shear shear(sigma, double(c.rho), double(c.h), p);
+    slideImplicitly(c, shear);
   }
 };
 

@@ -15,6 +15,7 @@
 
 #include "materials/hencky.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -63,8 +64,11 @@ struct CamClayModel {
   /// Closest point (px, py) on the ellipse (x/A)^2 + (y/B)^2 = 1 to (x, y), x, y >= 0, outside.
   static void closestOnEllipse(double x, double y, double A, double B, double& px, double& py) {
     // F(t) = (A x / (t + A^2))^2 + (B y / (t + B^2))^2 - 1 decreases and is convex for t >= 0,
-    // so Newton from t = 0 converges monotonically to the root (Eberly's formulation).
-    double t = 0;
+    // so Newton from any t with F(t) >= 0 converges monotonically to the root (Eberly's
+    // formulation). F(t) >= R^2 / (t + max(A^2, B^2))^2 - 1 with R = |(A x, B y)|, so F >= 0 at
+    // t = R - max(A^2, B^2): starting there instead of at 0 matters far outside a small ellipse
+    // (loose snow, p0 -> 0), where Newton from 0 grows t by only ~1.5x per iteration.
+    double t = std::max(0.0, std::sqrt(A * A * x * x + B * B * y * y) - std::max(A * A, B * B));
     for (int it = 0; it < 100; ++it) {
       const double u = A * x / (t + A * A), v = B * y / (t + B * B);
       const double F = u * u + v * v - 1;
