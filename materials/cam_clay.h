@@ -42,9 +42,8 @@ struct CamClayModel {
 
   /// eps_v that gives the table's p0 (eq. 10 inverted): particles start there.
   double initialVolumetricStrain() const { return -std::asinh(params.p0 / elastic.bulk()) / params.xi; }
-  double preconsolidation(double epsV) const {
-    return elastic.bulk() * std::sinh(params.xi * std::max(-epsV, 0.0));
-  }
+  double preconsolidation(double epsV) const { return preconsolidation(epsV, elastic.bulk()); }
+  double preconsolidation(double epsV, double K) const { return K * std::sinh(params.xi * std::max(-epsV, 0.0)); }
   double slope(const State& s) const { return s.yielded ? params.Ms : params.M; }
 
   double yield(double p, double q, double p0, double M) const {
@@ -82,16 +81,28 @@ struct CamClayModel {
     py = B * B * y / (t + B * B);
   }
 
+  /// Square roots the projection needs, computed once per yielding particle (the hardening
+  /// solve projects about seven times per particle).
+  struct Scales {
+    double K, sK, s3mu, sqrtTension;
+    explicit Scales(const CamClayModel& m)
+        : K(m.elastic.bulk()), sK(std::sqrt(K)), s3mu(std::sqrt(3 * m.elastic.mu)),
+          sqrtTension(std::sqrt(1 + 2 * m.params.beta)) {}
+  };
+
   /// Energy-norm closest point of (pTr, qTr) on the M_s ellipse of pre-consolidation p0.
   void projectOntoEllipse(double pTr, double qTr, double p0, double& p, double& q) const {
-    const double K = elastic.bulk(), sK = std::sqrt(K), s3mu = std::sqrt(3 * elastic.mu);
+    projectOntoEllipse(Scales(*this), pTr, qTr, p0, p, q);
+  }
+  void projectOntoEllipse(const Scales& c, double pTr, double qTr, double p0, double& p, double& q) const {
+    const double sK = c.sK, s3mu = c.s3mu;
     const double beta = params.beta;
     if (p0 <= 0) { // no strength left
       p = 0, q = 0;
       return;
     }
     const double ap = 0.5 * (1 + beta) * p0, centre = 0.5 * (1 - beta) * p0;
-    const double aq = params.Ms * ap / std::sqrt(1 + 2 * beta);
+    const double aq = params.Ms * ap / c.sqrtTension;
     const double x = (pTr - centre) / sK, y = qTr / s3mu, A = ap / sK, B = aq / s3mu;
     if ((x / A) * (x / A) + (y / B) * (y / B) <= 1) { // already inside
       p = pTr, q = qTr;
@@ -109,18 +120,22 @@ struct CamClayModel {
     const double tr = eps.sum(), pTr = -K * tr;
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);
     const double a = dev.norm(), qTr = k * a;
-    const double ev0 = s.volumetricPlasticStrain;
-    if (yield(pTr, qTr, preconsolidation(ev0), slope(s)) <= 0) return false;
+    const double ev0 = s.volumetricPlasticStrain, p00 = preconsolidation(ev0);
+    if (yield(pTr, qTr, p00, slope(s)) <= 0) return false;
 
     // Consistent hardening: find eps_v with G(eps_v) = eps_v - ev0 - (p(eps_v) - pTr) / K = 0,
     // p(eps_v) being the projection onto the ellipse of p0(eps_v). G runs from -inf (huge p0,
     // trial inside) to +inf (p0 = 0), so a bracket always exists.
-    double p = 0, q = 0;
-    auto G = [&](double ev) {
-      projectOntoEllipse(pTr, qTr, preconsolidation(ev), p, q);
+    // p, q are those of the last G evaluation, at `evaluatedAt`.
+    double p = 0, q = 0, evaluatedAt = ev0;
+    const Scales scales(*this);
+    auto Gp0 = [&](double ev, double p0) {
+      projectOntoEllipse(scales, pTr, qTr, p0, p, q);
+      evaluatedAt = ev;
       return ev - ev0 - (p - pTr) / K;
     };
-    double x0 = ev0, g0 = G(x0);
+    auto G = [&](double ev) { return Gp0(ev, preconsolidation(ev, K)); };
+    double x0 = ev0, g0 = Gp0(x0, p00);
     double lo, hi, glo, ghi;
     double step = std::abs(g0) + 1e-9;
     if (g0 > 0) {
@@ -147,7 +162,7 @@ struct CamClayModel {
         side = -1;
       }
     }
-    G(x); // leaves p, q of the final eps_v
+    if (evaluatedAt != x) G(x); // p, q of the final eps_v
     s.volumetricPlasticStrain = float(x);
     s.yielded = 1;
     eps = Vec3d::Constant(-p / (3 * K)) + (a > 0 ? q / qTr : 0.0) * dev;
