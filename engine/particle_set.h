@@ -33,8 +33,8 @@ struct ParticleSet {
 };
 
 /// Buffers the per-step reordering reuses (binning, gathers). Allocated once and kept: a buffer
-/// allocated afresh every step costs a page fault per 4 KB on first touch, which was two thirds
-/// of the binning time on the lab box (76 -> 24 ns per particle-step, docs/performance.md).
+/// allocated afresh every step costs a page fault per 4 KB on first touch, which was most of the
+/// binning time on the lab box (60-82 -> 24-29 ns per particle-step, docs/throughput.md).
 class ReorderScratch {
 public:
   std::vector<uint32_t> blockOf; ///< owning block per particle

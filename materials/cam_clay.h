@@ -84,9 +84,9 @@ struct CamClayModel {
   /// Square roots the projection needs, computed once per yielding particle (the hardening
   /// solve projects about seven times per particle).
   struct Scales {
-    double K, sK, s3mu, sqrtTension;
+    double sK, s3mu, sqrtTension;
     explicit Scales(const CamClayModel& m)
-        : K(m.elastic.bulk()), sK(std::sqrt(K)), s3mu(std::sqrt(3 * m.elastic.mu)),
+        : sK(std::sqrt(m.elastic.bulk())), s3mu(std::sqrt(3 * m.elastic.mu)),
           sqrtTension(std::sqrt(1 + 2 * m.params.beta)) {}
   };
 
