@@ -1,4 +1,5 @@
 #include "tools/validation_cases.h"
+#include "tools/validation_support.h"
 
 #include "engine/simulation.h"
 #include "io/scene/scene.h"
@@ -17,52 +18,9 @@ namespace talus::validation {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, RunCost& cost) {
-  SceneSetup s = loadSceneString(toml, "validation.toml",
-                                 {"simulation.particles_per_cell=" + std::to_string(r.particlesPerCell),
-                                  "simulation.cfl=" + std::to_string(r.cfl)});
-  auto sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
-  cost.particles = sim->particleCount();
-  return sim;
-}
-
-void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost) {
-  cost.steps = sim.steps();
-  cost.wallSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using namespace detail;
 
 double meanVelocityX(const Simulation& sim) { return sim.meanVelocity().x(); }
-
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buf[4096];
-  va_list ap;
-  va_start(ap, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
-
-/// Front of a quasi-2-D flow: the far edge of the last bin (width `bin`), in the contiguous run
-/// from x = 0, whose thickness (particle volume / (bin * channel width)) reaches `threshold`.
-/// A physical threshold, not "one particle layer", so the front means the same at every dx.
-double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold) {
-  std::map<int, double> volume;
-  const double ox = sim.settings().origin.x();
-  for (const auto* g : sim.groups())
-    for (size_t i = 0; i < g->size(); ++i)
-      volume[int(std::floor((double(g->particles.x[i].x()) + ox) / bin))] += double(g->particles.mass[i]) / g->density();
-  double front = 0;
-  int expect = volume.empty() ? 0 : std::min(0, volume.begin()->first);
-  for (const auto& [b, v] : volume) {
-    if (b != expect || v / (bin * channelWidth) < threshold) break;
-    front = (b + 1) * bin;
-    ++expect;
-  }
-  return front;
-}
 
 } // namespace
 
@@ -166,58 +124,6 @@ max = [1.0, %.9g, %.9g]
   if (crossings.size() < 4) throw std::runtime_error("elastic bar: fewer than four zero crossings");
   res.period = 0.5 * (crossings[3] - crossings[1]) + 0.5 * (crossings[2] - crossings[0]);
   res.relError = res.period / res.exact - 1;
-  finish(*sim, t0, res);
-  return res;
-}
-
-DamBreakResult damBreak(const std::string& dataFile, const Resolution& r) {
-  std::ifstream in(dataFile);
-  if (!in) throw std::runtime_error(dataFile + ": cannot read the Martin & Moyce data");
-  std::vector<std::pair<double, double>> data;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#' || line[0] == 'T') continue;
-    std::stringstream ss(line);
-    double T, Z;
-    char comma;
-    if (ss >> T >> comma >> Z && T <= 3.0) data.emplace_back(T, Z);
-  }
-  // a = 0.1 m (Froude scaling), two cells across the flume, water softened to c = 30 m/s
-  // (ten times the peak speed 2 sqrt(2 g a)).
-  const double a = 0.1, dx = a / r.cells, depth = 2 * dx;
-  const std::string toml = format(R"(
-[simulation]
-dx = %.9g
-end_time = 10
-[domain]
-min = [0, 0, 0]
-max = [0.6, %.9g, 0.25]
-walls = "slip"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = 30
-[[bodies]]
-material = "water"
-shape = "box"
-min = [0, 0, 0]
-max = [0.1, %.9g, 0.2]
-)", dx, depth, depth);
-  DamBreakResult res;
-  auto sim = build(toml, r, res);
-  const auto t0 = Clock::now();
-  const double tScale = std::sqrt(2 * 9.81 / a);
-  // Front: water at least 0.025 a thick (one particle spacing at a/dx = 20, 1.4 mm at the
-  // experiment's scale), in bins of one particle spacing.
-  const double spacing = dx / std::cbrt(double(r.particlesPerCell));
-  for (const auto& [T, Zexp] : data) {
-    sim->advanceTo(T / tScale);
-    const double Z = contiguousFront(*sim, spacing, depth, 0.025 * a) / a;
-    res.T.push_back(T), res.Z.push_back(Z), res.Zexp.push_back(Zexp);
-    const double e = std::abs(Z / Zexp - 1);
-    res.meanRelError += e / double(data.size());
-    res.maxRelError = std::max(res.maxRelError, e);
-  }
   finish(*sim, t0, res);
   return res;
 }

@@ -60,16 +60,34 @@ std::vector<Case> cases(const std::string& shared) {
                },
                {8, 16, 32, 64},
                {8, 16}});
-  if (!shared.empty())
-    c.push_back({"dam_break", "dam break against Martin & Moyce (1952), T ≤ 3",
-                 "mean |Z/Z_exp − 1| (includes the experiment's ~15 % release lag)", "cells across the column width",
-                 [shared](double cells, int ppc, double cfl) {
-                   const auto r = damBreak(shared + "/validation/dam_break/martin_moyce_1952_n2eq2_a2.25in_pysph.csv",
-                                           {cells, ppc, cfl});
-                   return fromCost(cells, r.meanRelError, r);
+  if (!shared.empty()) {
+    const std::string dir = shared + "/validation/dam_break/";
+    c.push_back({"dam_break", "dam break against Koshizuka & Oka (1996), T ≤ 3",
+                 "mean |Z/Z_exp − 1| (includes the experiment's late start)", "cells across the column width",
+                 [dir](double cells, int ppc, double cfl) {
+                   const auto run = damBreak({cells, ppc, cfl});
+                   return fromCost(cells, compareFront(run, dir + "koshizuka_oka_1996_pysph.csv").meanRelError, run);
                  },
                  {10, 20, 40},
                  {10}});
+    c.push_back({"dam_break_speed", "dam-break front speed dZ/dT (2 ≤ Z ≤ 8) against Martin & Moyce (1952)",
+                 "|dZ/dT / (dZ/dT)_exp − 1|", "cells across the column width",
+                 [dir](double cells, int ppc, double cfl) {
+                   const auto run = damBreak({cells, ppc, cfl});
+                   const auto m = compareFront(run, dir + "martin_moyce_1952_n2eq2_a2.25in_pysph.csv");
+                   return fromCost(cells, std::abs(m.frontSpeed / m.frontSpeedExp - 1), run);
+                 },
+                 {10, 20, 40},
+                 {10}});
+    c.push_back({"wall_impact", "dam break onto a wall, sensor P1 against Buchner (2002), c = 200 m/s",
+                 "|P_peak/P_peak,exp − 1| of the impact (T ≤ 3.3), 0.2 moving average", "cells across the column height H",
+                 [dir](double cells, int ppc, double cfl) {
+                   const auto r = wallImpact(dir + "buchner2002_pressure_P1_trixiparticles.csv", {cells, ppc, cfl});
+                   return fromCost(cells, std::abs(r.peak / r.peakExp - 1), r);
+                 },
+                 {10, 20, 30},
+                 {10}});
+  }
   c.push_back({"column_collapse", "granular column collapse (a = 0.8) against Lube et al. (2005)",
                "|run-out / 1.2a − 1|", "cells across the column length L0",
                [](double cells, int ppc, double cfl) {

@@ -1,0 +1,183 @@
+// The dam-break validation cases: the surge front against Martin & Moyce (1952) and Koshizuka &
+// Oka (1996), and the pressure on the far wall against Buchner (2002). Data: ../shared/validation.
+#include "tools/validation_cases.h"
+#include "tools/validation_support.h"
+
+#include "engine/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace talus::validation {
+
+namespace {
+
+using namespace detail;
+
+/// The numeric (x, y) pairs of a two-column CSV; comment lines (#) and headers are skipped.
+std::vector<std::pair<double, double>> readPairs(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file + ": cannot read the digitised data");
+  std::vector<std::pair<double, double>> data;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream ss(line);
+    double x, y;
+    char comma;
+    if (ss >> x >> comma >> y) data.emplace_back(x, y);
+  }
+  if (data.size() < 3) throw std::runtime_error(file + ": fewer than three data points");
+  return data;
+}
+
+/// Least-squares slope of y(x) over the pairs with lo <= y <= hi; 0 with fewer than two.
+double slopeWhere(const std::vector<double>& x, const std::vector<double>& y, double lo, double hi, size_t* used) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i)
+    if (y[i] >= lo && y[i] <= hi) n += 1, sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
+  if (used) *used = size_t(n);
+  return n >= 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.0;
+}
+
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
+  const auto it = std::lower_bound(x.begin(), x.end(), at);
+  if (it == x.begin()) return y.front();
+  if (it == x.end()) return y.back();
+  const size_t i = size_t(it - x.begin());
+  return y[i - 1] + (y[i] - y[i - 1]) * (at - x[i - 1]) / (x[i] - x[i - 1]);
+}
+
+} // namespace
+
+DamBreakResult damBreak(const Resolution& r) {
+  // a = 0.1 m (Froude scaling), two cells across the flume, water softened to c = 30 m/s
+  // (ten times the peak speed 2 sqrt(2 g a)); the flume is long enough for Z = 9.
+  const double a = 0.1, dx = a / r.cells, depth = 2 * dx, zMax = FrontComparison::kSpeedZ[1];
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 100
+[domain]
+min = [0, 0, 0]
+max = [%.9g, %.9g, 0.25]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 30
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.1, %.9g, 0.2]
+)", dx, (zMax + 1) * a, depth, depth);
+  DamBreakResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  const double tScale = std::sqrt(2 * 9.81 / a);
+  // Front: water at least 0.025 a thick (one particle spacing at a/dx = 20, 1.4 mm at the
+  // experiment's scale), in bins of one particle spacing.
+  const double spacing = dx / std::cbrt(double(r.particlesPerCell));
+  for (int i = 0;; ++i) {
+    const double T = 0.05 * i;
+    sim->advanceTo(T / tScale);
+    res.T.push_back(T);
+    res.Z.push_back(contiguousFront(*sim, spacing, depth, 0.025 * a) / a);
+    if ((T >= 3.2 && res.Z.back() > zMax + 0.2) || T >= 12) break;
+  }
+  finish(*sim, t0, res);
+  return res;
+}
+
+FrontComparison compareFront(const DamBreakResult& run, const std::string& dataFile) {
+  FrontComparison c;
+  std::vector<double> Te, Ze;
+  for (const auto& [T, Zexp] : readPairs(dataFile)) {
+    Te.push_back(T), Ze.push_back(Zexp);
+    if (T > 3.0) continue;
+    c.T.push_back(T), c.Z.push_back(interpolate(run.T, run.Z, T)), c.Zexp.push_back(Zexp);
+  }
+  for (size_t i = 0; i < c.T.size(); ++i) {
+    const double e = std::abs(c.Z[i] / c.Zexp[i] - 1);
+    c.meanRelError += e / double(c.T.size());
+    c.maxRelError = std::max(c.maxRelError, e);
+  }
+  const auto [lo, hi] = FrontComparison::kSpeedZ;
+  c.frontSpeed = slopeWhere(run.T, run.Z, lo, hi, nullptr);
+  c.frontSpeedExp = slopeWhere(Te, Ze, lo, hi, &c.speedPointsExp);
+  return c;
+}
+
+WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r, double soundSpeed) {
+  const auto data = readPairs(pressureFile);
+  // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
+  const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
+  const std::string toml = format(R"(
+[simulation]
+dx = %.9g
+end_time = 100
+[domain]
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = %.9g
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+)", dx, length, depth, 3 * H, soundSpeed, 2 * H, depth, H);
+  WallImpactResult res;
+  auto sim = build(toml, r, res);
+  const auto t0 = Clock::now();
+  const double tScale = std::sqrt(g / H), pScale = 1000 * g * H, zSensor = 0.2592 * H;
+  const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
+  std::vector<float> pressure;
+  for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
+    const double T = 0.01 * i;
+    sim->advanceTo(T / tScale);
+    double sum = 0;
+    size_t n = 0;
+    for (const auto* grp : sim->groups()) {
+      grp->scalar("pressure", pressure);
+      for (size_t p = 0; p < grp->size(); ++p) {
+        const Vec3 x = grp->particles.x[p];
+        if (double(x.x()) + ox >= length - dx && std::abs(double(x.z()) + oz - zSensor) <= 0.5 * dx)
+          sum += pressure[p], ++n;
+      }
+    }
+    res.T.push_back(T), res.P.push_back(n ? sum / double(n) / pScale : 0.0);
+  }
+  const int half = int(std::lround(0.5 * WallImpactResult::kFilterT / 0.01));
+  const int count = int(res.P.size());
+  double plateauN = 0;
+  for (int i = 0; i < count; ++i) {
+    double s = 0;
+    int n = 0;
+    for (int j = std::max(0, i - half); j <= std::min(count - 1, i + half); ++j) s += res.P[size_t(j)], ++n;
+    res.PFiltered.push_back(s / n);
+    const double T = res.T[size_t(i)], P = res.PFiltered.back();
+    if (T <= 3.3 && P > res.peak) res.peak = P, res.peakT = T;
+    if (res.onsetT == 0 && P >= 0.1) res.onsetT = T;
+    if (T >= 3.5 && T <= 5.0) res.plateau += P, plateauN += 1;
+  }
+  res.plateau /= std::max(1.0, plateauN);
+  double plateauExpN = 0;
+  for (const auto& [T, P] : data) {
+    if (T <= 3.3 && P > res.peakExp) res.peakExp = P, res.peakTExp = T;
+    if (res.onsetTExp == 0 && P >= 0.1) res.onsetTExp = T;
+    if (T >= 3.5 && T <= 5.0) res.plateauExp += P, plateauExpN += 1;
+  }
+  res.plateauExp /= std::max(1.0, plateauExpN);
+  finish(*sim, t0, res);
+  return res;
+}
+
+} // namespace talus::validation

@@ -1,0 +1,28 @@
+// Helpers shared by the validation cases (validation_cases.cpp, validation_dam_break.cpp):
+// building a Simulation from an inline scene at a given Resolution, timing, and the front of a
+// quasi-2-D flow. Internal to talus_validation.
+#pragma once
+
+#include "engine/simulation.h"
+#include "tools/validation_cases.h"
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+namespace talus::validation::detail {
+
+using Clock = std::chrono::steady_clock;
+
+/// The scene in `toml` at r's particles per cell and CFL; records the particle count in cost.
+std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, RunCost& cost);
+/// Records steps and wall seconds since t0.
+void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost);
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/// Front of a quasi-2-D flow: the far edge of the last bin (width `bin`), in the contiguous run
+/// from x = 0, whose thickness (particle volume / (bin * channel width)) reaches `threshold`.
+/// A physical threshold, not "one particle layer", so the front means the same at every dx.
+double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold);
+
+} // namespace talus::validation::detail
