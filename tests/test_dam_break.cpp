@@ -31,11 +31,12 @@ void printFront(const validation::FrontComparison& c, const char* who) {
 } // namespace
 
 // Goal (issue 14): the front within 5% of Koshizuka & Oka and its speed within 5% of Martin &
-// Moyce's. Not met for the position: the simulated front leads both experiments from T ~ 1
-// (+11% at T = 1.15, +22% at T = 2.7), the same at a/dx = 10, 20 and 40, so it is not the grid;
-// both experiments start late (a gate lifted in finite time, wall friction at a 5-15 cm scale)
-// and their fronts agree with each other. The tolerance 25% states what the model matches. The
-// speed, which that lag does not shift, is held to 8%: measured -5.9% at a/dx = 20.
+// Moyce's. The speed is met: dZ/dT over 2 <= Z <= 8 is +4.8%, +2.8%, +2.6% at a/dx = 10, 20,
+// 40 (held to 5%). The position is not: the simulated front leads Koshizuka & Oka from T ~ 1
+// (+11% at T = 1.15, +22% at T = 2.7) at every resolution, so it is not the grid. Both
+// experiments start late (a gate lifted in finite time, wall friction at a 5-15 cm scale): their
+// early fronts move at dZ/dT 1.1-1.3 and Martin & Moyce's reaches 1.7 only beyond Z = 5, while
+// the model's runs at 1.58 from the start. The tolerance 25% states what the model matches.
 TEST(DamBreak, SurgeFrontAgainstKoshizukaOkaAndMartinMoyce) {
   const std::string ko = damBreakData("koshizuka_oka_1996_pysph.csv");
   const std::string mm = damBreakData("martin_moyce_1952_n2eq2_a2.25in_pysph.csv");
@@ -52,7 +53,7 @@ TEST(DamBreak, SurgeFrontAgainstKoshizukaOkaAndMartinMoyce) {
     }
   }
   ASSERT_GE(m.speedPointsExp, 4u);
-  EXPECT_NEAR(m.frontSpeed, m.frontSpeedExp, 0.08 * m.frontSpeedExp);
+  EXPECT_NEAR(m.frontSpeed, m.frontSpeedExp, 0.05 * m.frontSpeedExp);
 }
 
 // Goal (issue 14): peak and its time within 15% after a stated filter (a centred moving average

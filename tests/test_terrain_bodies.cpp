@@ -268,3 +268,32 @@ TEST(TerrainBodies, BadPolygonsDemsAndBodiesGetClearErrors) {
                             "[[bodies]]\nkind = \"layer\"\nmaterial = \"snow\"\nthickness = 1\n";
   expectError(plane, "bodies[0].kind", "need a DEM");
 }
+
+// Issue 14: a release thinner than a cell gets a warning naming it, its mean thickness and the
+// dx that would put a cell across it; at one cell or more it gets none. A plane tilted 30
+// degrees with a 1 m slope-normal slab: 1/cos 30 = 1.155 m vertically (quadrature within 1 %).
+TEST(TerrainBodies, ThinReleasesAreWarnedAboutWithTheirThicknessInCells) {
+  test::useTestTerrainCache();
+  const std::string dir = test::tempDir("bodies_thin");
+  const double tilt = std::tan(30 * M_PI / 180);
+  const std::string dem =
+      writeDem(dir, "tilted.tif", test::makeDem(100, 60, 1, kX0, kY0, [&](double x, double) { return 1200 - (x - kX0) * tilt; }));
+  const std::string slab = "[[bodies]]\nname = \"thin slab\"\nkind = \"release\"\nmaterial = \"snow\"\nbounds = [" +
+                           std::to_string(kX0 + 30) + ", " + std::to_string(kY0 + 20) + ", " + std::to_string(kX0 + 60) +
+                           ", " + std::to_string(kY0 + 40) + "]\nthickness = 1\nthickness_direction = \"slope_normal\"\n";
+  auto warnings = [](const SceneSetup& s) {
+    std::vector<std::string> w;
+    for (const auto& n : s.notes)
+      if (n.rfind("warning: ", 0) == 0) w.push_back(n);
+    return w;
+  };
+  const SceneSetup coarse = loadSceneString(scene(dem, slab, 2.5), "thin.toml");
+  EXPECT_NEAR(coarse.bodies[0].meanThickness, 1 / std::cos(30 * M_PI / 180), 0.01);
+  const auto w = warnings(coarse);
+  ASSERT_EQ(w.size(), 1u);
+  std::printf("[ measured ] %s\n", w[0].c_str());
+  EXPECT_NE(w[0].find("thin slab"), std::string::npos);
+  EXPECT_NE(w[0].find("0.46 cells at dx 2.5 m"), std::string::npos);
+  EXPECT_NE(w[0].find("dx <= 1.15 m"), std::string::npos);
+  EXPECT_TRUE(warnings(loadSceneString(scene(dem, slab, 1.0), "thin.toml")).empty()) << "1.15 cells: no warning";
+}

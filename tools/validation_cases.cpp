@@ -128,9 +128,18 @@ max = [1.0, %.9g, %.9g]
   return res;
 }
 
-ColumnCollapseResult columnCollapse(double aspect, const Resolution& r) {
+ColumnCollapseResult columnCollapse(double aspect, const Resolution& r, GranularModel model) {
   const double L0 = 0.2, dx = L0 / r.cells, H = aspect * L0;
   const double reach = L0 * (2.5 + 2.5 * std::pow(aspect, 2.0 / 3.0));
+  const char* material = model == GranularModel::MuI ? R"(model = "mu_i"
+mu_s = 0.6249
+mu_2 = 0.9657
+i0 = 0.279
+grain_diameter = 0.001
+grain_density = 2500)"
+                                                     : R"(model = "drucker_prager"
+friction_angle = 32
+cone = "plane_strain")";
   const std::string toml = format(R"(
 [simulation]
 dx = %.9g
@@ -145,28 +154,44 @@ boundary = "friction"
 friction = 0.625
 [[materials]]
 name = "sand"
-model = "drucker_prager"
 density = 1500
 youngs_modulus = 5e5
 poisson_ratio = 0.3
-friction_angle = 32
-cone = "plane_strain"
+%s
 [[bodies]]
 material = "sand"
 shape = "box"
 min = [0, 0, 0]
 max = [%.9g, %.9g, %.9g]
-)", dx, reach, 2 * dx, 1.1 * H, L0, 2 * dx, H);
+)", dx, reach, 2 * dx, 1.1 * H, material, L0, 2 * dx, H);
   ColumnCollapseResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();
   sim->advanceTo(12 * std::sqrt(H / 9.81)); // the collapse lasts a few sqrt(H/g)
   // Front: deposit at least 0.025 L0 thick (one particle spacing at 20 cells across L0).
   const double spacing = dx / std::cbrt(double(r.particlesPerCell));
-  const double front = contiguousFront(*sim, spacing, 2 * dx, 0.025 * L0);
-  res.runOut = (front - L0) / L0;
-  res.reference = aspect < 1.8 ? 1.2 * aspect : 1.9 * std::pow(aspect, 2.0 / 3.0);
-  res.relError = res.runOut / res.reference - 1;
+  res.runOut = (contiguousFront(*sim, spacing, 2 * dx, 0.025 * L0) - L0) / L0;
+  res.runOutAcrossCell = (contiguousFront(*sim, spacing, 2 * dx, 0.025 * L0, dx) - L0) / L0;
+  const double small = 1.2 * aspect, large = 1.9 * std::pow(aspect, 2.0 / 3.0);
+  res.lubeLow = aspect <= 2.8 ? small : large, res.lubeHigh = aspect < 1.8 ? small : large;
+  if (res.lubeLow > res.lubeHigh) std::swap(res.lubeLow, res.lubeHigh);
+  res.reference = 0.5 * (res.lubeLow + res.lubeHigh);
+  res.lajeunesse = std::min(1.8 * aspect, 2.3 * std::pow(aspect, 2.0 / 3.0));
+  res.relError = res.runOut < res.lubeLow ? res.runOut / res.lubeLow - 1
+                 : res.runOut > res.lubeHigh ? res.runOut / res.lubeHigh - 1 : 0.0;
+  // Height: the thickest bin one cell wide; farthest: the farthest particle.
+  const double ox = sim->settings().origin.x();
+  std::map<int, double> volume;
+  double xMax = 0;
+  for (const auto* g : sim->groups())
+    for (size_t i = 0; i < g->size(); ++i) {
+      const double x = double(g->particles.x[i].x()) + ox;
+      volume[int(std::floor(x / dx))] += double(g->particles.mass[i]) / g->density();
+      xMax = std::max(xMax, x);
+    }
+  for (const auto& [b, v] : volume) res.finalHeight = std::max(res.finalHeight, v / (dx * 2 * dx) / L0);
+  res.referenceHeight = aspect <= 1.15 ? aspect : std::pow(aspect, 0.4);
+  res.farthest = (xMax - L0) / L0;
   res.finalRmsSpeed = std::sqrt(2 * sim->kineticEnergy() / sim->totalMass());
   res.collapseSpeedScale = std::sqrt(9.81 * H);
   finish(*sim, t0, res);

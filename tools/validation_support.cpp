@@ -32,20 +32,21 @@ std::string format(const char* fmt, ...) {
   return buf;
 }
 
-double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold) {
+double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold, double maxGap) {
   std::map<int, double> volume;
   const double ox = sim.settings().origin.x();
   for (const auto* g : sim.groups())
     for (size_t i = 0; i < g->size(); ++i)
       volume[int(std::floor((double(g->particles.x[i].x()) + ox) / bin))] += double(g->particles.mass[i]) / g->density();
-  double front = 0;
-  int expect = volume.empty() ? 0 : std::min(0, volume.begin()->first);
+  const int gapBins = int(std::floor(maxGap / bin + 1e-9));
+  bool started = false;
+  int last = 0;
   for (const auto& [b, v] : volume) {
-    if (b != expect || v / (bin * channelWidth) < threshold) break;
-    front = (b + 1) * bin;
-    ++expect;
+    if (v / (bin * channelWidth) < threshold) continue; // thin bins neither start nor extend the run
+    if (started && b - last - 1 > gapBins) break;
+    started = true, last = b;
   }
-  return front;
+  return started ? (last + 1) * bin : 0.0;
 }
 
 } // namespace talus::validation::detail

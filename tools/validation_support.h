@@ -20,9 +20,11 @@ std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, 
 void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost);
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 
-/// Front of a quasi-2-D flow: the far edge of the last bin (width `bin`), in the contiguous run
-/// from x = 0, whose thickness (particle volume / (bin * channel width)) reaches `threshold`.
-/// A physical threshold, not "one particle layer", so the front means the same at every dx.
-double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold);
+/// Front of a quasi-2-D flow (Lube's "farthest point of the continuous deposit"): bins of width
+/// `bin` count when their thickness (particle volume / (bin * channel width)) reaches
+/// `threshold`, a physical threshold so the front means the same at every dx. From the first
+/// such bin in x, the run continues across gaps of at most maxGap (0: none) and ends at the far
+/// edge of its last bin. A thin rear (a drained reservoir) neither starts nor breaks the run.
+double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold, double maxGap = 0);
 
 } // namespace talus::validation::detail

@@ -31,6 +31,7 @@ struct Point {
   double cells = 0, error = 0, wall = 0;
   size_t particles = 0;
   unsigned long long steps = 0;
+  std::string detail; ///< case-specific figures behind the error, printed with it
 };
 
 struct Case {
@@ -39,8 +40,14 @@ struct Case {
   std::vector<double> levels, quickLevels;
 };
 
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
 Point fromCost(double cells, double error, const RunCost& c) {
-  return {cells, error, c.wallSeconds, c.particles, c.steps};
+  return {cells, error, c.wallSeconds, c.particles, c.steps, {}};
 }
 
 std::vector<Case> cases(const std::string& shared) {
@@ -66,7 +73,10 @@ std::vector<Case> cases(const std::string& shared) {
                  "mean |Z/Z_exp − 1| (includes the experiment's late start)", "cells across the column width",
                  [dir](double cells, int ppc, double cfl) {
                    const auto run = damBreak({cells, ppc, cfl});
-                   return fromCost(cells, compareFront(run, dir + "koshizuka_oka_1996_pysph.csv").meanRelError, run);
+                   const auto k = compareFront(run, dir + "koshizuka_oka_1996_pysph.csv");
+                   Point p = fromCost(cells, k.meanRelError, run);
+                   p.detail = fmt("max %.3f", k.maxRelError);
+                   return p;
                  },
                  {10, 20, 40},
                  {10}});
@@ -75,7 +85,9 @@ std::vector<Case> cases(const std::string& shared) {
                  [dir](double cells, int ppc, double cfl) {
                    const auto run = damBreak({cells, ppc, cfl});
                    const auto m = compareFront(run, dir + "martin_moyce_1952_n2eq2_a2.25in_pysph.csv");
-                   return fromCost(cells, std::abs(m.frontSpeed / m.frontSpeedExp - 1), run);
+                   Point p = fromCost(cells, std::abs(m.frontSpeed / m.frontSpeedExp - 1), run);
+                   p.detail = fmt("dZ/dT %.3f", m.frontSpeed) + fmt(" (%.3f)", m.frontSpeedExp);
+                   return p;
                  },
                  {10, 20, 40},
                  {10}});
@@ -83,34 +95,41 @@ std::vector<Case> cases(const std::string& shared) {
                  "|P_peak/P_peak,exp − 1| of the impact (T ≤ 3.3), 0.2 moving average", "cells across the column height H",
                  [dir](double cells, int ppc, double cfl) {
                    const auto r = wallImpact(dir + "buchner2002_pressure_P1_trixiparticles.csv", {cells, ppc, cfl});
-                   return fromCost(cells, std::abs(r.peak / r.peakExp - 1), r);
+                   Point p = fromCost(cells, std::abs(r.peak / r.peakExp - 1), r);
+                   p.detail = fmt("onset T %.2f", r.onsetT) + fmt(" (%.2f)", r.onsetTExp) + fmt(", peak %.3f", r.peak) +
+                              fmt(" at %.2f", r.peakT) + fmt(" (%.3f", r.peakExp) + fmt(" at %.2f)", r.peakTExp) +
+                              fmt(", plateau %.3f", r.plateau) + fmt(" (%.3f)", r.plateauExp);
+                   return p;
                  },
                  {10, 20, 30},
                  {10}});
   }
-  c.push_back({"column_collapse", "granular column collapse (a = 0.8) against Lube et al. (2005)",
-               "|run-out / 1.2a − 1|", "cells across the column length L0",
-               [](double cells, int ppc, double cfl) {
-                 const auto r = columnCollapse(0.8, {cells, ppc, cfl});
-                 return fromCost(cells, std::abs(r.relError), r);
-               },
-               {10, 20, 40},
-               {10}});
-  c.push_back({"column_collapse_a5", "granular column collapse (a = 5) against Lube et al. (2005)",
-               "|run-out / 1.9a^(2/3) − 1|", "cells across the column length L0",
-               [](double cells, int ppc, double cfl) {
-                 const auto r = columnCollapse(5.0, {cells, ppc, cfl});
-                 return fromCost(cells, std::abs(r.relError), r);
-               },
-               {8, 12, 16},
-               {8}});
+  // Planar collapses at the aspect ratios of issue 14, rate-independent and mu(I).
+  for (const auto& [model, suffix] : {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})
+    for (const double a : {0.5, 2.0, 5.0, 10.0}) {
+      const bool tall = a > 5;
+      c.push_back({fmt("column_collapse_a%g", a) + suffix,
+                   fmt("granular column collapse (a = %g", a) + (*suffix ? ", μ(I)" : ", Drucker–Prager") +
+                       ") against Lube et al. (2005)",
+                   a < 1.8 ? "|run-out / 1.2a − 1|"
+                   : a > 2.8 ? "|run-out / 1.9a^(2/3) − 1|"
+                             : "distance from Lube's band [1.2a, 1.9a^(2/3)] relative to its nearer edge",
+                   "cells across the column length L0",
+                   [a, model](double cells, int ppc, double cfl) {
+                     const auto r = columnCollapse(a, {cells, ppc, cfl}, model);
+                     Point p = fromCost(cells, std::abs(r.relError), r);
+                     p.detail = fmt("run-out %.3g", r.runOut) +
+                                (r.lubeLow < r.lubeHigh ? fmt(" (Lube %.3g", r.lubeLow) + fmt("–%.3g", r.lubeHigh)
+                                                        : fmt(" (Lube %.3g", r.reference)) +
+                                fmt(", Lajeunesse %.3g)", r.lajeunesse) + fmt(", across a cell %.3g", r.runOutAcrossCell) +
+                                fmt(", farthest particle %.3g", r.farthest) + fmt("; height %.3g", r.finalHeight) +
+                                fmt(" (Lube %.3g)", r.referenceHeight);
+                     return p;
+                   },
+                   tall ? std::vector<double>{8, 12, 16} : std::vector<double>{8, 12, 16, 24},
+                   {8}});
+    }
   return c;
-}
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
 }
 
 /// Log-log chart: one polyline per case through its (wall, error) points.
@@ -199,7 +218,7 @@ int runSingleCase(const std::string& caseName, double cells, int ppc, double cfl
   for (const Case& c : cases(shared))
     if (c.name == caseName) {
       const Point p = c.run(cells, ppc, cfl);
-      std::printf("%.9g %.6g %zu %llu\n", p.error, p.wall, p.particles, p.steps);
+      std::printf("%.9g %.6g %zu %llu %s\n", p.error, p.wall, p.particles, p.steps, p.detail.c_str());
       return 0;
     }
   std::fprintf(stderr, "talus: unknown case '%s'\n", caseName.c_str());
@@ -232,7 +251,7 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
   for (const Case& c : all) {
     std::fprintf(stderr, "work-precision: %s\n", c.name.c_str());
     md << "### " << c.name << ": " << c.what << "\n\nError: " << c.errorMeaning << ". Resolution: " << c.cellsMeaning
-       << ".\n\n| resolution | particles | steps | wall (s) | error | observed order |\n|---|---|---|---|---|---|\n";
+       << ".\n\n| resolution | particles | steps | wall (s) | error | observed order | figures |\n|---|---|---|---|---|---|---|\n";
     std::vector<Point> pts;
     for (double cells : opt.quick ? c.quickLevels : c.levels) {
       const Point p = c.run(cells, 8, 0.4);
@@ -241,9 +260,9 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
               ? "–"
               : fmt("%.2f", std::log(pts.back().error / p.error) / std::log(cells / pts.back().cells));
       md << "| " << cells << " | " << p.particles << " | " << p.steps << " | " << fmt("%.2f", p.wall) << " | "
-         << fmt("%.3g", p.error) << " | " << order << " |\n";
+         << fmt("%.3g", p.error) << " | " << order << " | " << p.detail << " |\n";
       pts.push_back(p);
-      std::fprintf(stderr, "  %g cells: error %.3g, %.2f s\n", cells, p.error, p.wall);
+      std::fprintf(stderr, "  %g cells: error %.3g, %.2f s %s\n", cells, p.error, p.wall, p.detail.c_str());
     }
     md << "\n";
     names.push_back(c.name);

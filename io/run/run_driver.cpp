@@ -55,6 +55,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   info.scene = scene.file;
   info.threads = threads;
   info.materialNames = scene.materialNames;
+  info.notes = scene.notes;
   std::optional<OutputSet> outputs;
   const auto t0 = std::chrono::steady_clock::now();
   auto record = [&] {

@@ -58,6 +58,9 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   j << "  \"mass_removed\": " << num(sim.totalMassRemoved()) << ",\n";
   j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
   j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";
+  j << "  \"notes\": [";
+  for (size_t i = 0; i < info.notes.size(); ++i) j << (i ? ", " : "") << jsonString(info.notes[i]);
+  j << "],\n";
   const PhaseTimes& t = sim.phaseTimes();
   j << "  \"phase_seconds\": {\"bin\": " << num(t.bin) << ", \"colliders\": " << num(t.colliders) << ", \"p2g\": "
     << num(t.p2g) << ", \"grid\": " << num(t.grid) << ", \"g2p\": " << num(t.g2p) << ", \"cull\": " << num(t.cull)

@@ -17,6 +17,7 @@ struct RunInfo {
   std::string status = "completed"; ///< "failed: ...", or "interrupted" by a signal
   std::string signal;               ///< the signal that interrupted the run ("SIGTERM")
   std::vector<OutputReport> outputs;
+  std::vector<std::string> notes; ///< the scene's notes and warnings (thin bodies, filled DEM cells)
 };
 
 void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);

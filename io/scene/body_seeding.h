@@ -20,7 +20,15 @@ struct BodyReport {
   size_t particles = 0;
   double seededVolume = 0;    ///< particles * dx^3 / ppc
   double geometricVolume = 0; ///< of the shape (before terrain clipping)
+  double meanThickness = 0;   ///< terrain bodies: vertical, volume / plan area (m); 0 otherwise
 };
+
+/// Below this many cells across its mean thickness a released body's peak flow heights lose
+/// accuracy (docs/convergence.md, "Thin releases").
+constexpr double kThinBodyCells = 1.0;
+
+/// A warning for a terrain body thinner than kThinBodyCells at grid spacing dx, else "".
+std::string thinBodyNote(const BodyReport& body, double dx);
 
 /// Seeds a solid body (its table `t` gives velocity and angular_velocity) into `group`, inside the
 /// domain [domainMin, domainMax] (local). Throws InputError naming the table's keys.

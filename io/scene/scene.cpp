@@ -241,6 +241,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       }
       seeded.push_back(tb);
       rep.label = label;
+      if (std::string note = thinBodyNote(rep, s.settings.dx); !note.empty()) s.notes.push_back(note);
       s.bodies.push_back(rep);
       continue;
     }

@@ -220,27 +220,29 @@ std::shared_ptr<const Sdf> TerrainBody::fixedSolid() const {
   return std::make_shared<ShapeSdf>(solid_, "fixed " + t_->string("solid") + " of " + t_->keyPath(""));
 }
 
-double TerrainBody::measure(const HeightField& bed, double q, Vec3d& lo, Vec3d& hi) const {
+double TerrainBody::measure(const HeightField& bed, double q, Vec3d& lo, Vec3d& hi, double* area) const {
   double x0, y0, x1, y1;
   region_->bounds(x0, y0, x1, y1);
   const long nx = std::max(1L, long(std::ceil((x1 - x0) / q))), ny = std::max(1L, long(std::ceil((y1 - y0) / q)));
   const double qx = (x1 - x0) / double(nx), qy = (y1 - y0) / double(ny);
-  std::vector<double> vol(size_t(ny), 0.0), zlo(size_t(ny), INFINITY), zhi(size_t(ny), -INFINITY);
+  std::vector<double> vol(size_t(ny), 0.0), plan(size_t(ny), 0.0), zlo(size_t(ny), INFINITY), zhi(size_t(ny), -INFINITY);
   tbb::parallel_for(0L, ny, [&](long j) {
     const double y = y0 + (double(j) + 0.5) * qy;
     for (long i = 0; i < nx; ++i) {
       double zb, zt;
       if (!interval(bed, x0 + (double(i) + 0.5) * qx, y, zb, zt)) continue;
       vol[size_t(j)] += (zt - zb) * qx * qy;
+      plan[size_t(j)] += qx * qy;
       zlo[size_t(j)] = std::min(zlo[size_t(j)], zb), zhi[size_t(j)] = std::max(zhi[size_t(j)], zt);
     }
   });
-  double v = 0;
+  double v = 0, a = 0;
   lo = Vec3d(x0, y0, INFINITY), hi = Vec3d(x1, y1, -INFINITY);
   for (long j = 0; j < ny; ++j) {
-    v += vol[size_t(j)];
+    v += vol[size_t(j)], a += plan[size_t(j)];
     lo.z() = std::min(lo.z(), zlo[size_t(j)]), hi.z() = std::max(hi.z(), zhi[size_t(j)]);
   }
+  if (area) *area = a;
   return v;
 }
 

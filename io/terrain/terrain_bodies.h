@@ -50,8 +50,9 @@ public:
   /// of it (outside the region or a mask, or zero thickness).
   bool interval(const HeightField& bed, double x, double y, double& zb, double& zt) const;
 
-  /// Volume by quadrature (spacing q) and the body's world bounds.
-  double measure(const HeightField& bed, double q, Vec3d& lo, Vec3d& hi) const;
+  /// Volume by quadrature (spacing q) and the body's world bounds; `area` (optional) receives
+  /// its plan area.
+  double measure(const HeightField& bed, double q, Vec3d& lo, Vec3d& hi, double* area = nullptr) const;
   /// An upper bound of the body's top at world (x, y) whose bed height is zb (it bounds the cells
   /// seeding visits in a column; `contains` decides each sample).
   double columnTopBound(const HeightField& bed, double x, double y, double zb) const;
