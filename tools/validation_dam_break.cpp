@@ -49,31 +49,36 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y[i - 1] + (y[i] - y[i - 1]) * (at - x[i - 1]) / (x[i] - x[i - 1]);
 }
 
+/// A water column [0, column] in a slip-walled box [0, domain] (m), softened to soundSpeed (m/s).
+std::string waterColumnScene(double dx, const Vec3d& domain, const Vec3d& column, double soundSpeed) {
+  return format(R"(
+[simulation]
+dx = %.9g
+end_time = 100
+[domain]
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = %.9g
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [%.9g, %.9g, %.9g]
+)", dx, domain.x(), domain.y(), domain.z(), soundSpeed, column.x(), column.y(), column.z());
+}
+
 } // namespace
 
 DamBreakResult damBreak(const Resolution& r) {
   // a = 0.1 m (Froude scaling), two cells across the flume, water softened to c = 30 m/s
   // (ten times the peak speed 2 sqrt(2 g a)); the flume is long enough for Z = 9.
   const double a = 0.1, dx = a / r.cells, depth = 2 * dx, zMax = FrontComparison::kSpeedZ[1];
-  const std::string toml = format(R"(
-[simulation]
-dx = %.9g
-end_time = 100
-[domain]
-min = [0, 0, 0]
-max = [%.9g, %.9g, 0.25]
-walls = "slip"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = 30
-[[bodies]]
-material = "water"
-shape = "box"
-min = [0, 0, 0]
-max = [0.1, %.9g, 0.2]
-)", dx, (zMax + 1) * a, depth, depth);
+  const std::string toml = waterColumnScene(dx, Vec3d((zMax + 1) * a, depth, 0.25), Vec3d(a, depth, 2 * a), 30);
   DamBreakResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();
@@ -116,25 +121,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   const auto data = readPairs(pressureFile);
   // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
   const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
-  const std::string toml = format(R"(
-[simulation]
-dx = %.9g
-end_time = 100
-[domain]
-min = [0, 0, 0]
-max = [%.9g, %.9g, %.9g]
-walls = "slip"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = %.9g
-[[bodies]]
-material = "water"
-shape = "box"
-min = [0, 0, 0]
-max = [%.9g, %.9g, %.9g]
-)", dx, length, depth, 3 * H, soundSpeed, 2 * H, depth, H);
+  const std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H), soundSpeed);
   WallImpactResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();
