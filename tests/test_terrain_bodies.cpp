@@ -296,4 +296,15 @@ TEST(TerrainBodies, ThinReleasesAreWarnedAboutWithTheirThicknessInCells) {
   EXPECT_NE(w[0].find("0.46 cells at dx 2.5 m"), std::string::npos);
   EXPECT_NE(w[0].find("dx <= 1.15 m"), std::string::npos);
   EXPECT_TRUE(warnings(loadSceneString(scene(dem, slab, 1.0), "thin.toml")).empty()) << "1.15 cells: no warning";
+  // The remedy: the body's own particles_per_cell seeds 64/8 times the particles, each 8/64 as
+  // heavy, for the same volume (within 3 %: the coarse lattice of 8 samples the 0.46-cell slab
+  // in whole layers, the fine one in four times as many).
+  const SceneSetup fine = loadSceneString(scene(dem, slab + "particles_per_cell = 64\n", 2.5), "thin.toml");
+  const double expected = coarse.bodies[0].geometricVolume;
+  std::printf("[ measured ] seeded volume %.1f m3 at 8 per cell (%zu particles), %.1f m3 at 64 (%zu), geometric %.1f\n",
+              coarse.bodies[0].seededVolume, coarse.bodies[0].particles, fine.bodies[0].seededVolume,
+              fine.bodies[0].particles, expected);
+  EXPECT_GT(fine.bodies[0].particles, 6 * coarse.bodies[0].particles);
+  EXPECT_NEAR(fine.bodies[0].seededVolume, expected, 0.03 * expected);
+  EXPECT_EQ(warnings(fine).size(), 1u) << "still thinner than a cell: the warning stays";
 }

@@ -181,6 +181,13 @@ MaterialGroup* findGroup(const ConfigTable& t, SceneSetup& s, std::string& name)
   t.fail("material", "no material named '" + name + "' (materials: " + list + ")");
 }
 
+/// The seeding of one body: the scene's, with the body's own particles_per_cell if it gives one
+/// (more, lighter particles for a thin release: docs/convergence.md, "Thin releases").
+SeedSpec bodySpec(const ConfigTable& t, SeedSpec spec) {
+  spec.particlesPerCell = int(t.integer("particles_per_cell", spec.particlesPerCell, 1, 64));
+  return spec;
+}
+
 /// Reads [[bodies]]: solids (`shape`) and terrain bodies (`kind`), builds the terrain they need,
 /// then seeds them in order.
 void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* dem, uint64_t seed, double jitter,
@@ -234,7 +241,8 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       MaterialGroup* group = tb->kind() == TerrainBody::Kind::Fixed ? nullptr : findGroup(t, s, material);
       BodyReport rep;
       try {
-        rep = seedTerrainBody(*tb, *bedField, terrainSpec, s.settings.origin, worldMin, worldMax, group, seeded);
+        rep = seedTerrainBody(*tb, *bedField, bodySpec(t, terrainSpec), s.settings.origin, worldMin, worldMax, group,
+                              seeded);
       } catch (const InputError& e) {
         if (e.located()) throw;
         t.fail("", e.what()); // a limit: about this body
@@ -250,7 +258,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     auto shape = readBodyShape(t, s.settings.origin);
     BodyReport rep;
     try {
-      rep = seedShapeBody(t, *shape, spec, dom.min, dom.max, *group);
+      rep = seedShapeBody(t, *shape, bodySpec(t, spec), dom.min, dom.max, *group);
     } catch (const InputError& e) {
       if (e.located()) throw;
       t.fail("", e.what()); // a limit: about this body
