@@ -105,8 +105,10 @@ std::vector<Case> cases(const std::string& shared) {
                  {10}});
   }
   // Planar collapses at the aspect ratios of issue 14, rate-independent and mu(I).
-  for (const auto& [model, suffix] : {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})
+  for (const auto& [modelName, suffix] :
+       {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})
     for (const double a : {0.5, 2.0, 5.0, 10.0}) {
+      const GranularModel model = modelName; // a structured binding cannot be captured in C++17
       const bool tall = a > 5;
       c.push_back({fmt("column_collapse_a%g", a) + suffix,
                    fmt("granular column collapse (a = %g", a) + (*suffix ? ", μ(I)" : ", Drucker–Prager") +
