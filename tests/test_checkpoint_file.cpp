@@ -8,6 +8,7 @@
 #include "test_support.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <zlib.h>
 
 using namespace talus;
@@ -43,7 +44,8 @@ struct Fixture {
 const Fixture& fixture() {
   static const Fixture f = [] {
     Fixture x;
-    x.dir = test::tempDir("checkpoint_file");
+    // Per process: ctest runs this file's tests in parallel processes, each building the fixture.
+    x.dir = test::tempDir("checkpoint_file_" + std::to_string(::getpid()));
     x.good = x.dir + "/good.h5";
     auto sim = test::makeSimulation(kScene);
     for (int i = 0; i < 5; ++i) sim->step();

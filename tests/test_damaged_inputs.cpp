@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
@@ -16,7 +17,8 @@ using namespace talus;
 namespace {
 
 const std::string& dir() {
-  static const std::string d = test::tempDir("damaged_inputs");
+  // Per process: ctest runs this file's tests in parallel processes.
+  static const std::string d = test::tempDir("damaged_inputs_" + std::to_string(::getpid()));
   return d;
 }
 
