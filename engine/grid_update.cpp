@@ -120,7 +120,7 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
   loads.assign(K, ColliderLoad{});
   const double invDt = 1.0 / double(prm.dt);
   for (size_t b = 0; b < nBlocks; ++b)
-    for (size_t k = 0; k < K; ++k) {
+    for (size_t k = 0; k < K && (!prm.counted || (*prm.counted)[b]); ++k) {
       const double* a = &perBlock[(b * K + k) * 6];
       loads[k].force += Vec3d(a[0], a[1], a[2]) * invDt;
       loads[k].moment += Vec3d(a[3], a[4], a[5]) * invDt;

@@ -24,6 +24,8 @@ struct GridUpdateParams {
   /// Where materials share a contact node, the velocity is the mass-weighted mean of each law's
   /// result (the collider's law for the materials without their own).
   std::vector<MaterialLaw> const* materialLaws = nullptr; ///< null or empty: colliders' laws only
+  /// Per active block, whether its loads count here (MPI ranks: engine/halo_exchange.h); null: all.
+  std::vector<uint8_t> const* counted = nullptr;
 };
 
 /// After this, node records hold (mass, velocity). Colliders act in list order on each node.

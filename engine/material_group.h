@@ -12,6 +12,7 @@
 #include "engine/types.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -60,6 +61,10 @@ public:
   virtual double stableDtLimit(double dx) const { return std::numeric_limits<double>::infinity(); }
   /// Called once per step after G2P (e.g. a fluid updates the compression its sound speed uses).
   virtual void afterStep() {}
+  /// Group-wide values MPI ranks reduce to their minimum after each step (a fluid's most
+  /// compressed J, which sets its sound speed); none for most models.
+  virtual std::vector<double> rankMinima() const { return {}; }
+  virtual void setRankMinima(const std::vector<double>&) {}
   /// Called once before the first step: e.g. fluids start in hydrostatic equilibrium.
   virtual void initialize(const Vec3d& gravity, double dx) {}
   /// Gather velocities for particles [begin, end), update deformation, stress and position.
@@ -71,6 +76,10 @@ public:
   /// Initialise model state for particles appended to `particles` (undeformed, unyielded).
   virtual void resizeState(size_t n) = 0;
   virtual size_t stateBytesPerParticle() const = 0;
+  /// Migration between ranks: the state of particles idx, stateBytesPerParticle() each, into out;
+  /// and n such records appended after the last particle.
+  virtual void packState(const std::vector<uint32_t>& idx, char* out) const = 0;
+  virtual void appendState(const char* in, size_t n) = 0;
 
   /// Checkpointing: every array, bit for bit, under names prefixed by `prefix`.
   void save(StateArchive& a, const std::string& prefix) const {
@@ -108,5 +117,18 @@ private:
   int index_;
   double density_;
 };
+
+/// Elements idx of each array into out, one particle's values together (packState's layout).
+template <class... A>
+void packRecords(const std::vector<uint32_t>& idx, char* out, const A&... arrays) {
+  for (uint32_t p : idx)
+    ((std::memcpy(out, &arrays[p], sizeof(arrays[p])), out += sizeof(arrays[p])), ...);
+}
+/// n records of packRecords' layout appended to the arrays.
+template <class... A>
+void appendRecords(const char* in, size_t n, A&... arrays) {
+  for (size_t i = 0; i < n; ++i)
+    ((arrays.emplace_back(), std::memcpy(static_cast<void*>(&arrays.back()), in, sizeof(arrays.back())), in += sizeof(arrays.back())), ...);
+}
 
 } // namespace talus

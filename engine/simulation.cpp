@@ -98,22 +98,26 @@ double Simulation::maxWaveSpeed() const {
 }
 
 double Simulation::stableDt() const {
-  const double speed = maxWaveSpeed() + maxSpeed_;
+  double wave = maxWaveSpeed(), limit = std::numeric_limits<double>::infinity();
+  for (const auto* g : groupPtrs_)
+    if (g->size()) limit = std::min(limit, g->stableDtLimit(settings_.dx));
+  if (ranks_) wave = ranks_->comm().maxOf(wave), limit = ranks_->comm().minOf(limit);
+  const double speed = wave + maxSpeed_;
   double dt = speed > 0 ? settings_.cfl * settings_.dx / speed : settings_.maxDt;
   // With no wave speed and no motion yet, gravity alone sets the scale: move at most cfl*dx.
   if (!(speed > 0)) {
     const double g = settings_.gravity.norm();
     dt = g > 0 ? std::sqrt(2 * settings_.cfl * settings_.dx / g) : 1e-3;
   }
-  for (const auto* g : groupPtrs_)
-    if (g->size()) dt = std::min(dt, g->stableDtLimit(settings_.dx));
-  return std::min(dt, settings_.maxDt);
+  return std::min(std::min(dt, limit), settings_.maxDt);
 }
 
 double Simulation::step(double dtCap) {
   const double dt = std::min(stableDt(), dtCap);
   const Real rdt = Real(dt);
-  {
+  if (ranks_) {
+    binAndBalance();
+  } else {
     ScopedTimer t(times_.bin);
     binParticles(groupPtrs_, grid_, reorder_, &periodic_);
   }
@@ -121,9 +125,13 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.colliders);
     for (auto& c : colliders_) c->prepare(grid_.topology, settings_.dx, time_ + dt);
   }
+  if (ranks_) {
+    ScopedTimer t(times_.halo);
+    halo_.exchange(groupPtrs_, grid_, rdt, *ranks_);
+  }
   {
     ScopedTimer t(times_.p2g);
-    particlesToGrid(groupPtrs_, grid_, rdt);
+    particlesToGrid(groupPtrs_, grid_, rdt, ranks_ ? &halo_ : nullptr);
   }
   {
     ScopedTimer t(times_.grid);
@@ -135,21 +143,29 @@ double Simulation::step(double dtCap) {
     prm.gravity = (ramp * settings_.gravity).cast<Real>();
     prm.damping = Real(settings_.damping);
     prm.materialLaws = &materialLaws_;
+    prm.counted = ranks_ ? &halo_.counted() : nullptr;
     if (periodic_.any()) periodic_.fold(grid_);
     if (needsThickness_) columns_.build(grid_, 0);
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
     if (periodic_.any()) periodic_.unfold(grid_);
   }
+  if (ranks_) reduceLoads();
   G2PStats stats;
   {
     ScopedTimer t(times_.g2p);
     stats = gridToParticles(groupPtrs_, grid_, rdt);
   }
-  particleSteps_ += particleCount();
+  if (ranks_) {
+    ScopedTimer t(times_.halo);
+    stats.maxSpeed = Real(ranks_->comm().maxOf(double(stats.maxSpeed)));
+    stats.nonFinite = size_t(ranks_->comm().sumOf(stats.nonFinite));
+  }
+  particleSteps_ += globalParticleCount();
   time_ += dt;
   ++steps_;
   maxSpeed_ = stats.maxSpeed;
   for (auto* g : groupPtrs_) g->afterStep();
+  if (ranks_) reduceGroupMinima();
   checkFinite(stats.nonFinite);
   {
     ScopedTimer t(times_.cull);
@@ -168,8 +184,7 @@ void Simulation::advanceTo(double t, const std::function<void()>& onStep) {
   }
 }
 
-void Simulation::checkFinite(size_t nonFinite) const {
-  if (!nonFinite) return;
+std::string Simulation::nonFiniteMessage() const {
   for (const auto* g : groupPtrs_) {
     const auto& P = g->particles;
     for (size_t p = 0; p < P.size(); ++p) {
@@ -180,11 +195,19 @@ void Simulation::checkFinite(size_t nonFinite) const {
         s << "non-finite state at step " << steps_ << " (t = " << time_ << " s): particle " << p
           << " of material '" << g->name() << "' (" << g->modelName() << ") at (" << xw.x() << ", "
           << xw.y() << ", " << xw.z() << "), velocity (" << P.v[p].transpose() << ")";
-        throw NumericalError(s.str());
+        if (ranks_) s << " on rank " << ranks_->rank();
+        return s.str();
       }
     }
   }
-  throw NumericalError("non-finite particle state at step " + std::to_string(steps_));
+  return {};
+}
+
+void Simulation::checkFinite(size_t nonFinite) const {
+  if (!nonFinite) return;
+  if (ranks_) checkFiniteOnRanks();
+  const std::string m = nonFiniteMessage();
+  throw NumericalError(m.empty() ? "non-finite particle state at step " + std::to_string(steps_) : m);
 }
 
 void Simulation::cullEscaped() {

@@ -3,7 +3,9 @@
 
 #include "engine/collider.h"
 #include "engine/flow_thickness.h"
+#include "engine/domain_decomposition.h"
 #include "engine/grid_update.h"
+#include "engine/halo_exchange.h"
 #include "engine/periodic.h"
 #include "engine/contact_laws.h"
 #include "engine/material_group.h"
@@ -66,7 +68,8 @@ struct SimulationSettings {
 /// Wall-clock seconds spent in each phase of the step, summed over the run.
 struct PhaseTimes {
   double bin = 0, colliders = 0, p2g = 0, grid = 0, g2p = 0, cull = 0;
-  double total() const { return bin + colliders + p2g + grid + g2p + cull; }
+  double halo = 0; ///< MPI ranks: migration, the P2G halo and the reductions (waiting included)
+  double total() const { return bin + colliders + p2g + grid + g2p + cull + halo; }
 };
 
 /// Thrown when a particle's velocity or stress becomes NaN/inf; the message names the step,
@@ -79,6 +82,20 @@ public:
 class Simulation {
 public:
   Simulation(SimulationSettings settings, std::vector<std::unique_ptr<MaterialGroup>> groups);
+
+  /// Collective over comm's ranks: from here on this process holds and steps only the particles
+  /// of its range of blocks (engine/domain_decomposition.h). Every rank must have built the same
+  /// scene (all particles); results are bit-identical to one process's at any rank count.
+  /// @param imbalance  rebalance when a rank holds more than (1 + imbalance) x the mean particles
+  void distribute(std::shared_ptr<Communicator> comm, double imbalance = 0.1);
+  /// The ranks, or null for one process.
+  const DomainDecomposition* ranks() const { return ranks_.get(); }
+  /// Collective: rank 0's `view` (a Simulation built from the same scene, never stepped) gets
+  /// every rank's particles in one process's order, the clock, counters, loads and mass ledger,
+  /// so outputs written from it are one process's files. Other ranks pass null.
+  void gatherInto(Simulation* view);
+  /// Particles on all ranks (this process's count without ranks).
+  size_t globalParticleCount() const;
 
   /// Stable step from the CFL condition of the materials present, capped by maxDt.
   double stableDt() const;
@@ -144,6 +161,11 @@ private:
   void buildColliders();
   void cullEscaped();
   void checkFinite(size_t nonFinite) const;
+  void binAndBalance();
+  void reduceLoads();
+  void reduceGroupMinima();
+  [[noreturn]] void checkFiniteOnRanks() const;
+  std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty
 
   SimulationSettings settings_;
   std::vector<std::unique_ptr<MaterialGroup>> groups_;
@@ -163,6 +185,8 @@ private:
   double initialMass_ = 0;
   std::vector<double> massRemoved_;
   PhaseTimes times_;
+  std::unique_ptr<DomainDecomposition> ranks_;
+  HaloExchange halo_;
 };
 
 } // namespace talus

@@ -1,6 +1,9 @@
 #include "engine/transfer_p2g.h"
 
 #include "engine/bspline.h"
+#include "engine/halo_exchange.h"
+
+#include <cstring>
 
 #include <tbb/parallel_for.h>
 
@@ -68,37 +71,87 @@ void scatterExtra(const ParticleSet& P, size_t begin, size_t end, const std::vec
 
 } // namespace
 
-void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
-  for (const auto& colour : grid.colours) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, colour.size(), 1), [&](const auto& r) {
-      std::vector<Vec4> buf(kPadNodes);
+void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
+                  Vec4* buf, float* extra) {
+  std::fill(buf, buf + kPadNodes, Vec4::Zero());
+  const BlockCoord& bc = grid.topology.coord(b);
+  const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
+  for (const MaterialGroup* g : groups) {
+    const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
+    if (begin != end) scatterRange(g->particles, begin, end, Real(1.0 / g->density()), dt, grid.dx, origin, buf);
+  }
+  const int C = grid.extraChannels;
+  if (C <= 0) return;
+  std::fill(extra, extra + size_t(kPadNodes) * size_t(C), 0.f);
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const size_t begin = groups[gi]->blockStart[b], end = groups[gi]->blockStart[b + 1];
+    if (begin != end && !grid.extraOf[gi].empty())
+      scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], C, Real(1) / grid.dx, origin, extra);
+  }
+}
+
+namespace {
+
+void flushExtra(const float* extra, SparseGrid& grid, uint32_t b) {
+  const int C = grid.extraChannels;
+  const auto& up = grid.topology.upper(b);
+  forEachPaddedRow([&](int d, int pad, int node, int n) {
+    float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C);
+    const float* in = extra + size_t(pad) * size_t(C);
+    for (int k = 0; k < n * C; ++k) out[k] += in[k];
+  });
+}
+
+/// Adds rows another rank scattered (part d of its block's padded buffer) into block `target`.
+void flushRemote(const RemoteRows& rows, SparseGrid& grid) {
+  const int C = grid.extraChannels;
+  const char* nodes = rows.nodes;
+  const char* extra = rows.extra;
+  Vec4* block = grid.block(uint32_t(rows.target));
+  float* blockExtra = C > 0 ? grid.blockExtra(uint32_t(rows.target)) : nullptr;
+  forEachPaddedRow([&](int d, int, int node, int n) {
+    if (d != rows.d) return;
+    for (int k = 0; k < n; ++k, nodes += sizeof(Vec4)) {
+      Vec4 v;
+      std::memcpy(v.data(), nodes, sizeof(Vec4));
+      block[node + k] += v;
+    }
+    for (int k = 0; k < n * C; ++k, extra += sizeof(float)) {
+      float v;
+      std::memcpy(&v, extra, sizeof(float));
+      blockExtra[size_t(node) * size_t(C) + size_t(k)] += v;
+    }
+  });
+}
+
+} // namespace
+
+void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt, const HaloExchange* halo) {
+  const int C = grid.extraChannels;
+  for (int colour = 0; colour < 8; ++colour) {
+    const auto& local = grid.colours[size_t(colour)];
+    static const std::vector<RemoteRows> kNone;
+    const auto& remote = halo ? halo->remote(colour) : kNone;
+    // Blocks of one colour, local or another rank's, never reach the same node: one parallel pass.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, local.size() + remote.size(), 1), [&](const auto& r) {
+      std::vector<Vec4> buf;
       std::vector<float> extra;
       for (size_t c = r.begin(); c != r.end(); ++c) {
-        const uint32_t b = colour[c];
-        std::fill(buf.begin(), buf.end(), Vec4::Zero());
-        const BlockCoord& bc = grid.topology.coord(b);
-        const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
-        for (const MaterialGroup* g : groups) {
-          const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
-          if (begin != end)
-            scatterRange(g->particles, begin, end, Real(1.0 / g->density()), dt, grid.dx, origin, buf.data());
+        if (c >= local.size()) {
+          flushRemote(remote[c - local.size()], grid);
+          continue;
         }
+        const uint32_t b = local[c];
+        if (const Vec4* ahead = halo ? halo->stored(b) : nullptr) {
+          flush(ahead, grid, b);
+          if (C > 0) flushExtra(halo->storedExtra(b), grid, b);
+          continue;
+        }
+        buf.resize(kPadNodes);
+        extra.resize(size_t(kPadNodes) * size_t(std::max(C, 0)));
+        scatterBlock(groups, grid, b, dt, buf.data(), extra.data());
         flush(buf.data(), grid, b);
-        if (grid.extraChannels > 0) {
-          const int C = grid.extraChannels;
-          extra.assign(size_t(kPadNodes) * size_t(C), 0.f);
-          for (size_t gi = 0; gi < groups.size(); ++gi) {
-            const size_t begin = groups[gi]->blockStart[b], end = groups[gi]->blockStart[b + 1];
-            if (begin != end && !grid.extraOf[gi].empty())
-              scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], C, Real(1) / grid.dx, origin, extra.data());
-          }
-          const auto& up = grid.topology.upper(b);
-          forEachPaddedRow([&](int d, int pad, int node, int n) {
-            float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C);
-            const float* in = extra.data() + size_t(pad) * size_t(C);
-            for (int k = 0; k < n * C; ++k) out[k] += in[k];
-          });
-        }
+        if (C > 0) flushExtra(extra.data(), grid, b);
       }
     });
   }

@@ -8,10 +8,21 @@
 
 namespace talus {
 
+class HaloExchange;
+
 /// Adds mass and momentum (including the stress impulse -dt V tau D^-1 (x_i - x_p)) of every
 /// particle to grid.nodes. Blocks of one colour are two blocks apart, so their 2x2x2-block
 /// footprints never overlap: no atomics, and every node sums its contributions in the same
 /// order at any thread count (bit-identical results).
-void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
+/// With `halo` (MPI ranks), the blocks it scattered ahead are flushed from its buffers and the
+/// rows other ranks sent are added in the colour pass of the block that sent them: every node
+/// sums the same contributions in the same order as one process does.
+void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt,
+                     const HaloExchange* halo = nullptr);
+
+/// Scatters the particles of owning block b into its padded buffer `buf` (kPadNodes, zeroed
+/// here) and, when the grid has extra channels, `extra` (kPadNodes * channels, zeroed here).
+void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
+                  Vec4* buf, float* extra);
 
 } // namespace talus

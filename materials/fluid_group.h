@@ -43,6 +43,9 @@ public:
     stepMinJ_ = 1;
   }
 
+  std::vector<double> rankMinima() const override { return {double(minJ_)}; }
+  void setRankMinima(const std::vector<double>& v) override { minJ_ = float(v.at(0)); }
+
   bool hydrostatic = true; ///< start at rest under hydrostatic pressure (gravity along -z)
 
   /// Water at rest: every particle gets the J and stress of the hydrostatic pressure at its
@@ -84,6 +87,8 @@ public:
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }
   void resizeState(size_t n) override { dJ.resize(n, 0.0f); }
   size_t stateBytesPerParticle() const override { return sizeof(float); }
+  void packState(const std::vector<uint32_t>& idx, char* out) const override { packRecords(idx, out, dJ); }
+  void appendState(const char* in, size_t n) override { appendRecords(in, n, dJ); }
 
   std::vector<std::string> scalarNames() const override { return {"pressure", "J"}; }
   void scalar(const std::string& name, std::vector<float>& out) const override {

@@ -51,6 +51,8 @@ public:
     F.resize(n, Mat3::Identity());
     state.resize(n, initialState);
   }
+  void packState(const std::vector<uint32_t>& idx, char* out) const override { packRecords(idx, out, F, state); }
+  void appendState(const char* in, size_t n) override { appendRecords(in, n, F, state); }
   /// "pressure" (Cauchy, Pa, compression positive) and the model's own state variables.
   std::vector<std::string> scalarNames() const override {
     std::vector<std::string> n{"pressure"};

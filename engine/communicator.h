@@ -1,0 +1,54 @@
+// What the engine needs from the processes running one scene together: reductions, an all-gather
+// and an all-to-all of bytes. One process is SerialCommunicator; MPI ranks are
+// engine/mpi_communicator.h. The engine never includes MPI itself.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace talus {
+
+class Communicator {
+public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// Collective: the largest / smallest value over all ranks (exact: no rounding).
+  virtual double maxOf(double v) = 0;
+  virtual double minOf(double v) = 0;
+  virtual uint64_t sumOf(uint64_t v) = 0;
+  /// Collective: element-wise sums of n doubles over all ranks, into v on every rank.
+  virtual void sum(double* v, size_t n) = 0;
+  /// Collective: every rank's bytes, concatenated in rank order; `counts` gets each rank's size.
+  virtual std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
+  /// Collective: every rank's bytes, concatenated in rank order, on rank 0 only (empty elsewhere).
+  virtual std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
+  /// Collective: send[r] goes to rank r; returns what each rank sent here (index = source rank).
+  virtual std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) = 0;
+  /// Bytes this rank has sent to other ranks so far (the halo, migration, gathers).
+  uint64_t bytesSent = 0;
+  /// Wall seconds this rank has spent inside the calls above (waiting included).
+  double seconds = 0;
+};
+
+/// One process: reductions are identities, gathers return the caller's own bytes.
+class SerialCommunicator final : public Communicator {
+public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  double maxOf(double v) override { return v; }
+  double minOf(double v) override { return v; }
+  uint64_t sumOf(uint64_t v) override { return v; }
+  void sum(double*, size_t) override {}
+  std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
+    counts.assign(1, mine.size());
+    return mine;
+  }
+  std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
+    return allGather(mine, counts);
+  }
+  std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) override { return send; }
+};
+
+} // namespace talus

@@ -1,0 +1,134 @@
+#include "engine/domain_decomposition.h"
+
+#include "engine/bspline.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace talus {
+
+DomainDecomposition::DomainDecomposition(std::shared_ptr<Communicator> comm, double imbalance)
+    : comm_(std::move(comm)), threshold_(imbalance) {
+  // Until balance(): everything on rank 0 (the ranges start empty, at the largest coordinate).
+  const BlockCoord top{INT32_MAX, INT32_MAX, INT32_MAX};
+  first_.assign(size_t(comm_->size() - 1), top);
+}
+
+int DomainDecomposition::owner(const BlockCoord& c) const {
+  return int(std::upper_bound(first_.begin(), first_.end(), c,
+                              [](const BlockCoord& a, const BlockCoord& b) { return treeOrderLess(a, b); }) -
+             first_.begin());
+}
+
+void DomainDecomposition::balance(std::vector<std::pair<BlockCoord, uint64_t>> blocks) {
+  std::sort(blocks.begin(), blocks.end(), [](const auto& a, const auto& b) { return treeOrderLess(a.first, b.first); });
+  uint64_t total = 0;
+  for (const auto& b : blocks) total += b.second;
+  const int n = comm_->size();
+  const BlockCoord top{INT32_MAX, INT32_MAX, INT32_MAX};
+  first_.assign(size_t(n - 1), top);
+  uint64_t before = 0;
+  int r = 1;
+  for (const auto& [c, count] : blocks) {
+    // The block starting at `before` goes to the rank whose share [r N/n, (r+1) N/n) holds it.
+    while (r < n && before * uint64_t(n) >= uint64_t(r) * total) first_[size_t(r++ - 1)] = c;
+    before += count;
+  }
+}
+
+double DomainDecomposition::imbalance(size_t localParticles) const {
+  const double most = comm_->maxOf(double(localParticles));
+  const double total = double(comm_->sumOf(localParticles));
+  return total > 0 ? most / (total / comm_->size()) - 1 : 0;
+}
+
+namespace {
+
+/// Bytes of one particle's record: the common arrays, then the model's state.
+size_t recordBytes(const MaterialGroup& g) { return ParticleSet::bytesPerParticle() + g.stateBytesPerParticle(); }
+
+template <class T> void put(char*& out, const T& v) {
+  std::memcpy(out, &v, sizeof(T));
+  out += sizeof(T);
+}
+template <class T> void take(const char*& in, T& v) {
+  std::memcpy(static_cast<void*>(&v), in, sizeof(T));
+  in += sizeof(T);
+}
+
+} // namespace
+
+void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out) {
+  const size_t rec = recordBytes(g), common = ParticleSet::bytesPerParticle();
+  out.resize(idx.size() * rec);
+  const ParticleSet& P = g.particles;
+  for (size_t i = 0; i < idx.size(); ++i) {
+    char* o = out.data() + i * rec;
+    const uint32_t p = idx[i];
+    put(o, P.x[p]), put(o, P.v[p]), put(o, P.C[p]), put(o, P.tau[p]), put(o, P.mass[p]);
+  }
+  std::vector<char> state(idx.size() * g.stateBytesPerParticle());
+  g.packState(idx, state.data());
+  for (size_t i = 0; i < idx.size(); ++i)
+    std::memcpy(out.data() + i * rec + common, state.data() + i * g.stateBytesPerParticle(), g.stateBytesPerParticle());
+}
+
+void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
+  const size_t rec = recordBytes(g), common = ParticleSet::bytesPerParticle(), sb = g.stateBytesPerParticle();
+  const size_t n = in.size() / rec, base = g.particles.size();
+  ParticleSet& P = g.particles;
+  P.resize(base + n);
+  std::vector<char> state(n * sb);
+  for (size_t i = 0; i < n; ++i) {
+    const char* s = in.data() + i * rec;
+    const size_t p = base + i;
+    take(s, P.x[p]), take(s, P.v[p]), take(s, P.C[p]), take(s, P.tau[p]), take(s, P.mass[p]);
+    std::memcpy(state.data() + i * sb, in.data() + i * rec + common, sb);
+  }
+  g.appendState(state.data(), n);
+}
+
+size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, Real dx) {
+  const int n = comm_->size(), me = comm_->rank();
+  const Real invDx = Real(1) / dx;
+  size_t sent = 0;
+  for (MaterialGroup* g : groups) {
+    const auto& x = g->particles.x;
+    std::vector<std::vector<uint32_t>> to(static_cast<size_t>(n));
+    BlockCoord last{INT32_MIN, 0, 0};
+    int dest = me;
+    for (size_t p = 0; p < x.size(); ++p) {
+      const BlockCoord b = owningBlock(x[p], invDx);
+      if (b != last) last = b, dest = owner(b);
+      to[size_t(dest)].push_back(uint32_t(p));
+    }
+    const bool leaving = to[size_t(me)].size() != x.size();
+    std::vector<std::vector<char>> send(static_cast<size_t>(n));
+    for (int r = 0; r < n; ++r)
+      if (r != me) packParticles(*g, to[size_t(r)], send[size_t(r)]), sent += to[size_t(r)].size();
+    auto recv = comm_->exchange(send);
+    bool arriving = false;
+    for (int r = 0; r < n; ++r) arriving |= r != me && !recv[size_t(r)].empty();
+    if (!leaving && !arriving) continue;
+    // Rebuild in rank order: lower ranks' particles, our own, higher ranks' (file comment).
+    std::vector<char> own;
+    packParticles(*g, to[size_t(me)], own);
+    recv[size_t(me)] = std::move(own);
+    g->particles.resize(0);
+    g->resizeState(0);
+    for (int r = 0; r < n; ++r) appendParticles(*g, recv[size_t(r)]);
+  }
+  return sent;
+}
+
+void DomainDecomposition::keepOwn(const std::vector<MaterialGroup*>& groups, Real dx) {
+  const Real invDx = Real(1) / dx;
+  for (MaterialGroup* g : groups) {
+    std::vector<uint8_t> keep(g->size());
+    for (size_t p = 0; p < g->size(); ++p) keep[p] = owner(owningBlock(g->particles.x[p], invDx)) == comm_->rank();
+    g->particles.forEachArray([&](auto& a) { compactInPlace(a, keep); });
+    g->compactState(keep);
+  }
+}
+
+} // namespace talus

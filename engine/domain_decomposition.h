@@ -1,0 +1,74 @@
+// Which rank owns which blocks: contiguous ranges of blocks in the tree's order (BlockTopology's
+// block order), sized by particle count, and the migration of particles between ranks.
+//
+// Why the tree's order: one process sorts particles by block in exactly that order (stably), so
+// when rank r holds the r-th range, the ranks' particle arrays concatenated in rank order are the
+// one process's arrays. Migration keeps that true: a rank rebuilds its arrays from what the
+// ranks below it sent, then its own, then what the ranks above sent, and binning's stable sort
+// does the rest. Every sum on the grid then sees the same particles in the same order.
+#pragma once
+
+#include "engine/communicator.h"
+#include "engine/material_group.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace talus {
+
+/// Strict weak order of block coordinates identical to the iteration order of BlockTopology's
+/// OpenVDB tree (Int32Tree: root tiles of 4096^3 blocks in coordinate order, then 32^3 and 16^3
+/// children and 8^3 leaf voxels, each x-major).
+inline bool treeOrderLess(const BlockCoord& a, const BlockCoord& b) {
+  auto root = [](const BlockCoord& c) { return std::array<int32_t, 3>{c.x >> 12, c.y >> 12, c.z >> 12}; };
+  const auto ra = root(a), rb = root(b);
+  if (ra != rb) return ra < rb;
+  auto inner = [](const BlockCoord& c) {
+    auto part = [&](int shift, int mask, int bits) {
+      return (uint64_t((c.x >> shift) & mask) << (2 * bits)) | (uint64_t((c.y >> shift) & mask) << bits) |
+             uint64_t((c.z >> shift) & mask);
+    };
+    return (part(7, 31, 5) << 21) | (part(3, 15, 4) << 9) | part(0, 7, 3);
+  };
+  return inner(a) < inner(b);
+}
+
+/// Particles idx of g (common arrays and model state) as records of
+/// ParticleSet::bytesPerParticle() + g.stateBytesPerParticle() bytes; and records appended to g.
+void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out);
+void appendParticles(MaterialGroup& g, const std::vector<char>& in);
+
+class DomainDecomposition {
+public:
+  /// @param imbalance  rebalance when the most loaded rank holds more than (1 + imbalance) times
+  ///                   the mean particle count
+  DomainDecomposition(std::shared_ptr<Communicator> comm, double imbalance);
+
+  Communicator& comm() const { return *comm_; }
+  int rank() const { return comm_->rank(); }
+  int size() const { return comm_->size(); }
+  /// Rank owning block c.
+  int owner(const BlockCoord& c) const;
+
+  /// Collective. New ranges from the global owning blocks and their particle counts (any order):
+  /// rank r gets the blocks whose cumulative count, in tree order, starts in [r, r+1) N/size.
+  void balance(std::vector<std::pair<BlockCoord, uint64_t>> blocks);
+  /// Collective. Moves every particle to the rank owning its block (see the file comment).
+  /// Returns the number of particles this rank sent away.
+  size_t migrate(const std::vector<MaterialGroup*>& groups, Real dx);
+  /// Keeps only the particles of this rank's blocks (every rank holding every particle).
+  void keepOwn(const std::vector<MaterialGroup*>& groups, Real dx);
+
+  /// Collective: (max / mean - 1) of the ranks' particle counts.
+  double imbalance(size_t localParticles) const;
+  double threshold() const { return threshold_; }
+  uint64_t rebalances = 0;
+
+private:
+  std::shared_ptr<Communicator> comm_;
+  double threshold_;
+  std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
+};
+
+} // namespace talus

@@ -1,0 +1,58 @@
+// The grid halo between MPI ranks: P2G contributions to blocks other ranks also hold.
+//
+// A rank holds its owning blocks and their +1 closure, as one process does. A node of that
+// closure also gets contributions from particles of other ranks; each rank scatters its blocks
+// whose stencils reach blocks active elsewhere ahead of P2G and sends those rows. A rank adds the
+// rows it receives in the colour pass of the block that sent them, so every node it holds ends
+// up with the complete sum, added in one process's order. The grid update on a node shared by
+// two ranks then runs on both with identical inputs (no second exchange of velocities for G2P);
+// its collider loads count on the lowest of them only.
+#pragma once
+
+#include "engine/domain_decomposition.h"
+#include "engine/sparse_grid.h"
+
+#include <array>
+#include <vector>
+
+namespace talus {
+
+/// Rows of part d (engine/padded_block.h) of another rank's padded buffer, for local block `target`.
+struct RemoteRows {
+  int32_t target;
+  int d;
+  const char* nodes; ///< Vec4 per node, forEachPaddedRow order
+  const char* extra; ///< extra channels per node, same order
+};
+
+class HaloExchange {
+public:
+  /// Collective, after binning, before particlesToGrid: learns every rank's owning blocks,
+  /// scatters this rank's blocks that reach other ranks' blocks, and exchanges those rows.
+  void exchange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt, DomainDecomposition& dd);
+
+  /// The padded P2G buffer of owning block b scattered ahead, or null.
+  const Vec4* stored(uint32_t b) const {
+    return slot_[b] < 0 ? nullptr : stored_.data() + size_t(slot_[b]) * kPadNodes;
+  }
+  const float* storedExtra(uint32_t b) const {
+    return storedExtra_.data() + size_t(slot_[b]) * kPadNodes * size_t(channels_);
+  }
+  const std::vector<RemoteRows>& remote(int colour) const { return remote_[size_t(colour)]; }
+  /// Per active block: 1 when this rank adds the block's collider loads (the lowest rank holding it).
+  const std::vector<uint8_t>& counted() const { return counted_; }
+  /// Halo bytes this rank sent in the last exchange.
+  size_t lastBytes() const { return lastBytes_; }
+
+private:
+  std::vector<int32_t> slot_;
+  std::vector<Vec4> stored_;
+  std::vector<float> storedExtra_;
+  int channels_ = 0;
+  std::array<std::vector<RemoteRows>, 8> remote_;
+  std::vector<std::vector<char>> received_;
+  std::vector<uint8_t> counted_;
+  size_t lastBytes_ = 0;
+};
+
+} // namespace talus

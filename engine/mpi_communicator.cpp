@@ -1,0 +1,169 @@
+#include "engine/mpi_communicator.h"
+
+#include <chrono>
+#include <climits>
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef TALUS_HAVE_MPI
+// The C API only: Open MPI's deprecated C++ bindings would need libmpi_cxx.
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+#endif
+
+namespace talus {
+
+bool launchedAsRanks() {
+  // Open MPI's mpirun, PMIx launchers (srun --mpi=pmix, prterun) and PMI-1/2 launchers.
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+#ifdef TALUS_HAVE_MPI
+
+namespace {
+
+class Stopwatch {
+public:
+  explicit Stopwatch(double& acc) : acc_(acc), t0_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() { acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+private:
+  double& acc_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+int checkedCount(size_t n) {
+  if (n > size_t(INT_MAX)) throw std::runtime_error("a message between ranks exceeds 2 GiB; use more ranks");
+  return int(n);
+}
+
+class MpiCommunicator final : public Communicator {
+public:
+  MpiCommunicator() {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  double maxOf(double v) override { return reduce(v, MPI_MAX); }
+  double minOf(double v) override { return reduce(v, MPI_MIN); }
+  uint64_t sumOf(uint64_t v) override {
+    Stopwatch t(seconds);
+    uint64_t out = 0;
+    MPI_Allreduce(&v, &out, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    return out;
+  }
+  void sum(double* v, size_t n) override {
+    Stopwatch t(seconds);
+    MPI_Allreduce(MPI_IN_PLACE, v, checkedCount(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  }
+  std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
+    Stopwatch t(seconds);
+    const int n = checkedCount(mine.size());
+    std::vector<int> c(static_cast<size_t>(size_), 0), displ(static_cast<size_t>(size_), 0);
+    MPI_Allgather(&n, 1, MPI_INT, c.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    size_t total = 0;
+    counts.assign(size_t(size_), 0);
+    for (int r = 0; r < size_; ++r) {
+      displ[size_t(r)] = checkedCount(total);
+      counts[size_t(r)] = size_t(c[size_t(r)]);
+      total += counts[size_t(r)];
+    }
+    std::vector<char> out(total);
+    MPI_Allgatherv(mine.data(), n, MPI_BYTE, out.data(), c.data(), displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+    bytesSent += uint64_t(mine.size()) * uint64_t(size_ - 1);
+    return out;
+  }
+  std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
+    Stopwatch t(seconds);
+    const int n = checkedCount(mine.size());
+    std::vector<int> c(static_cast<size_t>(size_), 0), displ(static_cast<size_t>(size_), 0);
+    MPI_Gather(&n, 1, MPI_INT, c.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    size_t total = 0;
+    counts.assign(static_cast<size_t>(size_), 0);
+    for (int r = 0; r < size_; ++r) {
+      displ[size_t(r)] = checkedCount(total);
+      counts[size_t(r)] = size_t(c[size_t(r)]);
+      total += counts[size_t(r)];
+    }
+    std::vector<char> out(rank_ == 0 ? total : 0);
+    MPI_Gatherv(mine.data(), n, MPI_BYTE, out.data(), c.data(), displ.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+    if (rank_ != 0) bytesSent += mine.size();
+    return out;
+  }
+  std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) override {
+    Stopwatch t(seconds);
+    std::vector<uint64_t> out(static_cast<size_t>(size_)), in(static_cast<size_t>(size_));
+    for (int r = 0; r < size_; ++r) out[size_t(r)] = send[size_t(r)].size();
+    MPI_Alltoall(out.data(), 1, MPI_UINT64_T, in.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+    std::vector<std::vector<char>> recv(static_cast<size_t>(size_));
+    std::vector<MPI_Request> req;
+    for (int r = 0; r < size_; ++r) {
+      if (r == rank_) {
+        recv[size_t(r)] = std::move(send[size_t(r)]);
+        continue;
+      }
+      recv[size_t(r)].resize(in[size_t(r)]);
+      if (in[size_t(r)]) {
+        req.emplace_back();
+        MPI_Irecv(recv[size_t(r)].data(), checkedCount(in[size_t(r)]), MPI_BYTE, r, 7, MPI_COMM_WORLD, &req.back());
+      }
+    }
+    for (int r = 0; r < size_; ++r)
+      if (r != rank_ && out[size_t(r)]) {
+        req.emplace_back();
+        MPI_Isend(send[size_t(r)].data(), checkedCount(out[size_t(r)]), MPI_BYTE, r, 7, MPI_COMM_WORLD, &req.back());
+        bytesSent += out[size_t(r)];
+      }
+    MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE);
+    return recv;
+  }
+
+private:
+  double reduce(double v, MPI_Op op) {
+    Stopwatch t(seconds);
+    double out = 0;
+    MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, op, MPI_COMM_WORLD);
+    return out;
+  }
+  int rank_ = 0, size_ = 1;
+};
+
+void finalizeAtExit() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+} // namespace
+
+std::shared_ptr<Communicator> worldCommunicator(int* argc, char*** argv) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) {
+    int provided = 0;
+    // Only the main thread calls MPI; TBB's workers never do.
+    MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+    std::atexit(finalizeAtExit);
+  }
+  return std::make_shared<MpiCommunicator>();
+}
+
+void abortAllRanks(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::_Exit(code);
+}
+
+#else
+
+std::shared_ptr<Communicator> worldCommunicator(int*, char***) {
+  throw std::runtime_error("this talus was built without MPI (install libopenmpi-dev and rebuild)");
+}
+
+void abortAllRanks(int code) { std::_Exit(code); }
+
+#endif
+
+} // namespace talus

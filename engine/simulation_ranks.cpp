@@ -1,0 +1,138 @@
+// The parts of the step that only MPI ranks run: distribution, migration with rebalancing, and
+// the reduction of collider loads (engine/domain_decomposition.h, engine/halo_exchange.h).
+#include "engine/simulation.h"
+
+#include "engine/particle_binning.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace talus {
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// This rank's owning blocks with their particle counts (after binning).
+std::vector<std::pair<BlockCoord, uint64_t>> blockCounts(const SparseGrid& grid, const std::vector<MaterialGroup*>& groups) {
+  std::vector<std::pair<BlockCoord, uint64_t>> out;
+  for (uint32_t b : grid.owning) {
+    uint64_t n = 0;
+    for (const MaterialGroup* g : groups) n += g->blockStart[b + 1] - g->blockStart[b];
+    out.push_back({grid.topology.coord(b), n});
+  }
+  return out;
+}
+} // namespace
+
+void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance) {
+  if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
+  if (needsThickness_)
+    throw std::invalid_argument("basal laws that need the flow thickness (voellmy, samosat) do not run on several ranks yet (run without mpirun)");
+  ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
+  // Every rank holds every particle here: the same binning everywhere gives the same ranges.
+  binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+  ranks_->balance(blockCounts(grid_, groupPtrs_));
+  ranks_->keepOwn(groupPtrs_, grid_.dx);
+}
+
+size_t Simulation::globalParticleCount() const {
+  return ranks_ ? size_t(ranks_->comm().sumOf(particleCount())) : particleCount();
+}
+
+void Simulation::binAndBalance() {
+  auto t0 = std::chrono::steady_clock::now();
+  ranks_->migrate(groupPtrs_, grid_.dx);
+  times_.halo += secondsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+  times_.bin += secondsSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  if (ranks_->imbalance(particleCount()) > ranks_->threshold()) {
+    // New ranges from every rank's blocks; the order of the particles across ranks is unchanged.
+    const auto mine = blockCounts(grid_, groupPtrs_);
+    std::vector<char> bytes(mine.size() * sizeof(mine[0]));
+    if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+    std::vector<size_t> counts;
+    const std::vector<char> all = ranks_->comm().allGather(bytes, counts);
+    std::vector<std::pair<BlockCoord, uint64_t>> blocks(all.size() / sizeof(mine[0]));
+    if (!blocks.empty()) std::memcpy(static_cast<void*>(blocks.data()), all.data(), all.size());
+    ranks_->balance(std::move(blocks));
+    ranks_->migrate(groupPtrs_, grid_.dx);
+    ++ranks_->rebalances;
+    times_.halo += secondsSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+    times_.bin += secondsSince(t0);
+  } else {
+    times_.halo += secondsSince(t0);
+  }
+}
+
+void Simulation::reduceLoads() {
+  // Each block's loads count on one rank; the ranks' partial sums add to the total (to round-off
+  // of one process's block-order sum: the grouping of the additions differs).
+  std::vector<double> v;
+  for (const ColliderLoad& l : loads_)
+    for (int d = 0; d < 3; ++d) v.push_back(l.force[d]), v.push_back(l.moment[d]);
+  if (v.empty()) return;
+  ranks_->comm().sum(v.data(), v.size());
+  for (size_t k = 0; k < loads_.size(); ++k)
+    for (int d = 0; d < 3; ++d) loads_[k].force[d] = v[6 * k + 2 * size_t(d)], loads_[k].moment[d] = v[6 * k + 2 * size_t(d) + 1];
+}
+
+} // namespace talus
+
+namespace talus {
+
+void Simulation::reduceGroupMinima() {
+  for (auto* g : groupPtrs_) {
+    std::vector<double> v = g->rankMinima();
+    if (v.empty()) continue;
+    for (double& x : v) x = ranks_->comm().minOf(x);
+    g->setRankMinima(v);
+  }
+}
+
+void Simulation::checkFiniteOnRanks() const {
+  // Every rank stops; all report the message of the lowest rank holding a non-finite particle.
+  const std::string mine = nonFiniteMessage();
+  std::vector<size_t> counts;
+  const std::vector<char> all = ranks_->comm().allGather(std::vector<char>(mine.begin(), mine.end()), counts);
+  size_t at = 0;
+  for (size_t c : counts) {
+    if (c) throw NumericalError(std::string(all.data() + at, c));
+    at += c;
+  }
+  throw NumericalError("non-finite particle state at step " + std::to_string(steps_));
+}
+
+void Simulation::gatherInto(Simulation* view) {
+  Communicator& comm = ranks_->comm();
+  if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
+  for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
+    const MaterialGroup& g = *groupPtrs_[gi];
+    std::vector<uint32_t> all(g.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
+    std::vector<char> mine;
+    packParticles(g, all, mine);
+    std::vector<size_t> counts;
+    const std::vector<char> gathered = comm.gather(mine, counts);
+    if (!view) continue;
+    MaterialGroup& to = *view->groupPtrs_[gi];
+    to.particles.resize(0);
+    to.resizeState(0);
+    appendParticles(to, gathered);
+    to.setRankMinima(g.rankMinima());
+  }
+  std::vector<double> removed = massRemoved_;
+  if (!removed.empty()) comm.sum(removed.data(), removed.size());
+  if (!view) return;
+  view->time_ = time_, view->steps_ = steps_, view->particleSteps_ = particleSteps_, view->maxSpeed_ = maxSpeed_;
+  view->loads_ = loads_;
+  view->massRemoved_ = removed;
+  view->times_ = times_;
+}
+
+} // namespace talus

@@ -1,0 +1,198 @@
+// Rank-count invariance of the distributed step (engine/domain_decomposition.h,
+// engine/halo_exchange.h). Run under mpirun at 2 and 4 ranks (tests/CMakeLists.txt): every rank
+// runs the scene distributed, rank 0 also runs it as one process, and the ranks' particles,
+// concatenated in rank order, must equal the one process's arrays bit for bit.
+#include "engine/bspline.h"
+#include "engine/mpi_communicator.h"
+#include "engine/simulation.h"
+#include "io/scene/scene.h"
+
+#include <cstring>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+using namespace talus;
+
+namespace {
+
+std::shared_ptr<Communicator> world;
+
+/// Every particle array and every state variable the model reports, in particle order. (The
+/// state records themselves may hold padding bytes, e.g. Cam Clay's flag: not compared.)
+std::vector<std::vector<char>> arrays(const MaterialGroup* g) {
+  auto bytes = [](const auto& v) {
+    const char* p = reinterpret_cast<const char*>(v.data());
+    return std::vector<char>(p, p + v.size() * sizeof(v[0]));
+  };
+  const auto& P = g->particles;
+  std::vector<std::vector<char>> out{bytes(P.x), bytes(P.v), bytes(P.C), bytes(P.tau), bytes(P.mass)};
+  std::vector<float> values;
+  for (const std::string& name : g->scalarNames()) {
+    g->scalar(name, values);
+    out.push_back(bytes(values));
+  }
+  return out;
+}
+
+std::vector<char> snapshot(const Simulation& sim) {
+  std::vector<char> out;
+  for (const MaterialGroup* g : sim.groups())
+    for (const auto& a : arrays(g)) out.insert(out.end(), a.begin(), a.end());
+  return out;
+}
+
+/// The distributed particles gathered to every rank in snapshot()'s layout: each array is the
+/// ranks' parts in rank order.
+std::vector<char> gathered(const Simulation& sim) {
+  std::vector<char> out;
+  for (const MaterialGroup* g : sim.groups())
+    for (const auto& a : arrays(g)) {
+      std::vector<size_t> counts;
+      const auto all = world->allGather(a, counts);
+      out.insert(out.end(), all.begin(), all.end());
+    }
+  return out;
+}
+
+struct RankRun {
+  std::unique_ptr<Simulation> sim;
+  std::vector<char> particles; ///< gathered
+};
+
+RankRun runDistributed(const std::string& toml, const std::vector<std::string>& overrides, int steps,
+                   double imbalance = 0.1) {
+  SceneSetup s = loadSceneString(toml, "test.toml", overrides);
+  RankRun r;
+  r.sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
+  r.sim->distribute(world, imbalance);
+  for (int i = 0; i < steps; ++i) r.sim->step();
+  r.particles = gathered(*r.sim);
+  return r;
+}
+
+std::vector<char> runAlone(const std::string& toml, const std::vector<std::string>& overrides, int steps) {
+  SceneSetup s = loadSceneString(toml, "test.toml", overrides);
+  Simulation sim(s.settings, std::move(s.groups));
+  for (int i = 0; i < steps; ++i) sim.step();
+  return snapshot(sim);
+}
+
+/// Bit-identical particles at this rank count and in one process (checked on rank 0).
+void expectInvariant(const RankRun& r, const std::string& toml, const std::vector<std::string>& overrides, int steps) {
+  if (world->rank() != 0) return;
+  const std::vector<char> alone = runAlone(toml, overrides, steps);
+  ASSERT_EQ(alone.size(), r.particles.size());
+  EXPECT_EQ(std::memcmp(alone.data(), r.particles.data(), alone.size()), 0)
+      << "the particles at " << world->size() << " ranks differ from one process's";
+}
+
+// An elastic block sliding along +x on a Coulomb floor, through the ranks' ranges.
+const char* kSlidingBlock = R"(
+[simulation]
+dx = 0.05
+particles_per_cell = 8
+end_time = 1
+[domain]
+min = [0, 0, 0]
+max = [3.2, 0.8, 0.8]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0.1], normal = [0, 0, 1] }
+boundary = { law = "coulomb", friction = 0.1 }
+[[materials]]
+name = "jelly"
+model = "elastic"
+density = 1000
+youngs_modulus = 2e5
+poisson_ratio = 0.3
+[[bodies]]
+material = "jelly"
+shape = "box"
+center = [0.5, 0.4, 0.3]
+size = [0.6, 0.4, 0.4]
+velocity = [6, 0, 0]
+)";
+
+// A Drucker-Prager column collapsing on a frictional floor (a = 2).
+const char* kCollapse = R"(
+[simulation]
+dx = 0.02
+particles_per_cell = 8
+end_time = 1
+[domain]
+min = [0, 0, 0]
+max = [1.3, 0.16, 0.5]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0.02], normal = [0, 0, 1] }
+boundary = { law = "coulomb", friction = 0.5 }
+[[materials]]
+name = "sand"
+model = "drucker_prager"
+density = 1600
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+friction_angle = 30
+[[bodies]]
+material = "sand"
+shape = "box"
+center = [0.12, 0.08, 0.26]
+size = [0.2, 0.16, 0.4]
+)";
+
+} // namespace
+
+TEST(Ranks, AnElasticBlockSlidingThroughThreeRanksRangesIsBitIdentical) {
+  // No rebalancing: the ranges stay where the block started, so it slides out of rank 0's
+  // range through the others' (4 ranks: three boundaries crossed).
+  RankRun r = runDistributed(kSlidingBlock, {}, 150, 1e9);
+  const uint64_t moved = world->sumOf(r.sim->particleCount() ? 1 : 0);
+  EXPECT_GE(moved, 1u);
+  // Every particle lies in a block of its own rank.
+  const DomainDecomposition& dd = *r.sim->ranks();
+  for (const MaterialGroup* g : r.sim->groups())
+    for (const Vec3& x : g->particles.x)
+      ASSERT_EQ(dd.owner(owningBlock(x, Real(1) / Real(0.05))), world->rank());
+  // It did cross the ranges: at the start the last rank held no more than its quarter; now the
+  // block (moved ~0.9 m, more than its length) sits beyond the first rank's range.
+  EXPECT_EQ(world->sumOf(world->rank() == 0 ? r.sim->particleCount() : 0), 0u) << "the block never left rank 0";
+  expectInvariant(r, kSlidingBlock, {}, 150);
+}
+
+TEST(Ranks, AGranularCollapseIsBitIdentical) {
+  RankRun r = runDistributed(kCollapse, {}, 200);
+  EXPECT_GT(world->sumOf(r.sim->ranks()->rebalances), 0u) << "the collapse spreads: ranks should rebalance";
+  expectInvariant(r, kCollapse, {}, 200);
+}
+
+TEST(Ranks, TheDefaultTerrainSceneIsBitIdentical) {
+  RankRun r = runDistributed(defaultSceneText(), {"simulation.end_time=0.3"}, 120);
+  expectInvariant(r, defaultSceneText(), {"simulation.end_time=0.3"}, 120);
+}
+
+TEST(Ranks, ColliderLoadsAgreeWithOneProcessToRoundOff) {
+  RankRun r = runDistributed(kCollapse, {}, 100);
+  if (world->rank() != 0) return;
+  SceneSetup s = loadSceneString(kCollapse, "test.toml", {});
+  Simulation alone(s.settings, std::move(s.groups));
+  for (int i = 0; i < 100; ++i) alone.step();
+  ASSERT_EQ(alone.colliderLoads().size(), r.sim->colliderLoads().size());
+  for (size_t k = 0; k < alone.colliderLoads().size(); ++k) {
+    const Vec3d a = alone.colliderLoads()[k].force, b = r.sim->colliderLoads()[k].force;
+    // Partial sums per rank, then across ranks: the grouping of the additions differs, so the
+    // load agrees to double rounding of the sum (1e-12 relative), not bit for bit.
+    EXPECT_LE((a - b).norm(), 1e-12 * std::max(1.0, a.norm())) << alone.colliders()[k]->name();
+  }
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  world = worldCommunicator(&argc, &argv);
+  // One thread per rank: the tests oversubscribe two cores with four ranks.
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+  if (world->rank() != 0) ::testing::GTEST_FLAG(output) = "", delete ::testing::UnitTest::GetInstance()->listeners().Release(
+      ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  const int failed = RUN_ALL_TESTS();
+  // Any rank's failure fails the job.
+  return world->sumOf(uint64_t(failed)) ? 1 : 0;
+}
