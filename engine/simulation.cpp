@@ -149,7 +149,10 @@ double Simulation::step(double dtCap) {
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
     if (periodic_.any()) periodic_.unfold(grid_);
   }
-  if (ranks_) reduceLoads();
+  if (ranks_) {
+    ScopedTimer t(times_.halo);
+    reduceLoads(rdt);
+  }
   G2PStats stats;
   {
     ScopedTimer t(times_.g2p);

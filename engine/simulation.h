@@ -119,6 +119,7 @@ public:
   /// Every collider (terrain, structures, closed faces, in the order they act) and the load each
   /// took in the last step.
   const std::vector<std::unique_ptr<Collider>>& colliders() const { return colliders_; }
+  /// With ranks: rank 0 holds the totals (one process's, bit for bit), other ranks partial sums.
   const std::vector<ColliderLoad>& colliderLoads() const { return loads_; }
 
   /// Per material group (in groups() order): mass, kinetic energy and gravitational potential
@@ -162,7 +163,7 @@ private:
   void cullEscaped();
   void checkFinite(size_t nonFinite) const;
   void binAndBalance();
-  void reduceLoads();
+  void reduceLoads(Real dt);
   void reduceGroupMinima();
   [[noreturn]] void checkFiniteOnRanks() const;
   std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty

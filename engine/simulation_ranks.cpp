@@ -4,6 +4,7 @@
 
 #include "engine/particle_binning.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -70,16 +71,42 @@ void Simulation::binAndBalance() {
   }
 }
 
-void Simulation::reduceLoads() {
-  // Each block's loads count on one rank; the ranks' partial sums add to the total (to round-off
-  // of one process's block-order sum: the grouping of the additions differs).
-  std::vector<double> v;
-  for (const ColliderLoad& l : loads_)
-    for (int d = 0; d < 3; ++d) v.push_back(l.force[d]), v.push_back(l.moment[d]);
-  if (v.empty()) return;
-  ranks_->comm().sum(v.data(), v.size());
-  for (size_t k = 0; k < loads_.size(); ++k)
-    for (int d = 0; d < 3; ++d) loads_[k].force[d] = v[6 * k + 2 * size_t(d)], loads_[k].moment[d] = v[6 * k + 2 * size_t(d) + 1];
+void Simulation::reduceLoads(Real dt) {
+  // One process adds every block's loads in block (tree) order. Each block's loads are counted
+  // on one rank; rank 0 gathers the blocks that took any load and adds them in the same order,
+  // so the loads are one process's, bit for bit (blocks without load add exact zeros there).
+  const size_t K = loads_.size(), rec = sizeof(BlockCoord) + 6 * K * sizeof(double);
+  if (!K) return;
+  const auto& counted = halo_.counted();
+  std::vector<char> mine;
+  for (uint32_t b = 0; b < grid_.blockCount(); ++b) {
+    const double* a = &grid_.contactImpulse[size_t(b) * K * 6];
+    if (!counted[b] || std::all_of(a, a + 6 * K, [](double v) { return v == 0; })) continue;
+    mine.resize(mine.size() + rec);
+    std::memcpy(mine.data() + mine.size() - rec, &grid_.topology.coord(b), sizeof(BlockCoord));
+    std::memcpy(mine.data() + mine.size() - rec + sizeof(BlockCoord), a, 6 * K * sizeof(double));
+  }
+  std::vector<size_t> counts;
+  const std::vector<char> all = ranks_->comm().gather(mine, counts);
+  if (ranks_->rank() != 0) return; // only rank 0 reports loads (its outputs)
+  std::vector<const char*> blocks;
+  for (size_t at = 0; at < all.size(); at += rec) blocks.push_back(all.data() + at);
+  auto coordOf = [](const char* p) {
+    BlockCoord c;
+    std::memcpy(&c, p, sizeof c);
+    return c;
+  };
+  std::sort(blocks.begin(), blocks.end(), [&](const char* x, const char* y) { return treeOrderLess(coordOf(x), coordOf(y)); });
+  loads_.assign(K, ColliderLoad{});
+  const double invDt = 1.0 / double(dt);
+  std::vector<double> a(6 * K);
+  for (const char* p : blocks) {
+    std::memcpy(a.data(), p + sizeof(BlockCoord), 6 * K * sizeof(double));
+    for (size_t k = 0; k < K; ++k) {
+      loads_[k].force += Vec3d(a[k * 6], a[k * 6 + 1], a[k * 6 + 2]) * invDt;
+      loads_[k].moment += Vec3d(a[k * 6 + 3], a[k * 6 + 4], a[k * 6 + 5]) * invDt;
+    }
+  }
 }
 
 } // namespace talus

@@ -35,6 +35,9 @@ struct CamClayModel {
   struct State {
     float volumetricPlasticStrain = 0; ///< eps_v (negative when compacted)
     uint8_t yielded = 0;
+    // Explicit, always zero: a copy then copies every byte, so checkpoints and the records ranks
+    // exchange are the same bytes whichever process wrote them (implicit padding is garbage).
+    uint8_t unused[3] = {0, 0, 0};
   };
 
   HenckyElasticity elastic;

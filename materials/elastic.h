@@ -10,7 +10,9 @@ namespace talus {
 
 struct ElasticModel {
   static constexpr const char* kName = "elastic";
-  struct State {};
+  struct State {
+    uint8_t unused = 0; ///< an empty struct still takes a byte: make it a defined one (see cam_clay.h)
+  };
 
   HenckyElasticity elastic;
 

@@ -2,6 +2,7 @@
 #include "io/common/input_error.h"
 #include "io/common/write_error.h"
 #include "io/terrain/dem_raster.h"
+#include "engine/mpi_communicator.h"
 #include "io/run/run_driver.h"
 #include "io/run/run_signals.h"
 #include "io/scene/avaframe_scene.h"
@@ -30,8 +31,13 @@ SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) 
   return loadSceneFile(scene, sets);
 }
 
+/// MPI ranks when started by mpirun/srun (null otherwise); only rank 0 prints.
+std::shared_ptr<Communicator> gRanks;
+bool isRoot() { return !gRanks || gRanks->rank() == 0; }
+
 int cmdRun(const std::string& scene, const std::string& out, int threads, const std::vector<std::string>& sets,
            bool quiet, const std::string& resume) {
+  quiet = quiet || !isRoot();
   if (!resume.empty() && !out.empty() && out != resume)
     throw InputError("--out", 0, "", "--resume continues in its own directory; do not give a different --out");
   SceneSetup setup = load(scene, sets);
@@ -43,6 +49,10 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   opt.threads = threads;
   opt.progress = !quiet;
   opt.handleSignals = true;
+  if (gRanks && gRanks->size() > 1) {
+    opt.ranks = gRanks;
+    opt.viewScene = [&] { return load(scene, sets); };
+  }
   size_t n = 0;
   for (const auto& g : setup.groups) n += g->size();
   if (!quiet)
@@ -55,6 +65,8 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   again += " --resume " + r.outDir;
   char at[96];
   std::snprintf(at, sizeof at, "t = %.6g s", r.checkpointTime);
+  if (!isRoot() && r.status != RunStatus::Completed) // rank 0 reports; every rank exits alike
+    return r.status == RunStatus::Interrupted ? 128 + r.signal : r.status == RunStatus::WriteFailure ? kExitWriteFailure : 3;
   switch (r.status) {
   case RunStatus::Completed: break;
   case RunStatus::NumericalFailure:
@@ -151,6 +163,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (launchedAsRanks()) gRanks = worldCommunicator(&argc, &argv);
     if (!avaframe.empty()) sets.push_back(avaFrameOverride(avaframe));
     if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
@@ -165,13 +178,15 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const InputError& e) {
-    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    // Every rank reads the same inputs and fails alike: rank 0 speaks for them.
+    if (isRoot()) std::fprintf(stderr, "talus: error: %s\n", e.what());
     return 2;
   } catch (const WriteError& e) {
     std::fprintf(stderr, "talus: error: %s\n", e.what());
     return kExitWriteFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "talus: error: %s\n", e.what());
+    if (isRoot()) std::fprintf(stderr, "talus: error: %s\n", e.what());
+    else std::fprintf(stderr, "talus: error on rank %d: %s\n", gRanks->rank(), e.what());
     return 1;
   }
   return 0;

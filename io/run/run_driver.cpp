@@ -5,6 +5,7 @@
 #include "io/output/output_set.h"
 #include "io/output/particle_writer.h"
 #include "io/run/progress_bar.h"
+#include "io/run/run_ranks.h"
 #include "io/run/run_signals.h"
 #include "io/run/run_summary.h"
 
@@ -46,11 +47,22 @@ std::vector<std::string> filesToOpenFirst(const RunResult& r) {
 RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   namespace fs = std::filesystem;
   RunResult res;
+  RunRanks ranks(opt.ranks);
   res.outDir = opt.outDir.empty() ? scene.output.directory : opt.outDir;
   const int threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
 
   Simulation sim(scene.settings, std::move(scene.groups));
+  // With ranks, rank 0 writes every output from a view of the whole run (Simulation::gatherInto).
+  std::unique_ptr<Simulation> viewed;
+  if (ranks.active() && ranks.root()) {
+    SceneSetup again = opt.viewScene();
+    viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
+  }
+  Simulation& view = viewed ? *viewed : sim;
+  auto gather = [&] {
+    if (ranks.active()) sim.gatherInto(viewed.get());
+  };
   RunInfo info;
   info.scene = scene.file;
   info.threads = threads;
@@ -77,7 +89,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
     info.status = std::string("failed: ") + e.what();
     record();
     try {
-      writeSummaryJson(summaryFile, sim, info);
+      writeSummaryJson(summaryFile, view, info);
     } catch (const WriteError&) {
       // The disk refuses it as well; the error above is the one to report.
     }
@@ -94,39 +106,60 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   std::optional<RunSignals> signals;
   if (opt.handleSignals) signals.emplace(opt.progress);
   try {
-    makeDirectories(res.outDir);
-    outputs.emplace(scene.output, scene.runContext(), res.outDir); // only what [output] asks for
-    outputs->start(sim);
+    ranks.onRoot([&] {
+      makeDirectories(res.outDir);
+      outputs.emplace(scene.output, scene.runContext(), res.outDir); // only what [output] asks for
+      outputs->start(view);
+    });
     if (opt.resume) {
+      // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
+      // a run checkpointed at N ranks resumes at any M.
       readCheckpoint(checkpointFile, sim, identity, [&](const StateArchive& a) {
-        outputs->load(a);
+        if (outputs) outputs->load(a);
         frame = a.getValue<int32_t>("driver/next_frame");
         nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
       });
       res.checkpointTime = sim.time();
-    } else if (interval > 0) {
-      outputs->frame(sim, frame++);
+    }
+    // The first frame before distributing: binning reorders the particles, and one process
+    // writes this frame in seeding order.
+    if (!opt.resume && interval > 0) {
+      ranks.onRoot([&] { outputs->frame(view, frame); });
+      ++frame;
+    }
+    if (ranks.active()) {
+      sim.distribute(opt.ranks);
+      gather();
     }
     auto checkpoint = [&] {
-      writeCheckpoint(checkpointFile, sim, identity, [&](StateArchive& a) {
-        outputs->save(a);
-        a.putValue("driver/next_frame", int32_t(frame));
-        a.putValue("driver/next_checkpoint", nextCheckpoint);
+      ranks.onRoot([&] {
+        writeCheckpoint(checkpointFile, view, identity, [&](StateArchive& a) {
+          outputs->save(a);
+          a.putValue("driver/next_frame", int32_t(frame));
+          a.putValue("driver/next_checkpoint", nextCheckpoint);
+        });
       });
       res.checkpointTime = sim.time();
     };
 
-    ProgressBar bar(scene.endTime, stderr, opt.progress);
+    ProgressBar bar(scene.endTime, stderr, opt.progress && ranks.root());
     try {
       while (sim.time() < scene.endTime) {
         const double frameTime = frame * interval;
         const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
         sim.advanceTo(next, [&] {
-          outputs->step(sim);
+          gather();
+          ranks.onRoot([&] { outputs->step(view); });
           bar.update(sim.time(), sim.steps(), sim.particleSteps());
+          if (ranks.active() && ranks.root() && opt.handleSignals) {
+            char line[200];
+            std::snprintf(line, sizeof line, "talus: the job was at step %llu (t = %.6g s); its last checkpoint (t = %.6g s) is whole; mpirun names a rank that failed",
+                          (unsigned long long)sim.steps(), sim.time(), res.checkpointTime);
+            setStopContext(line);
+          }
           // Signals are read once per step, after the step, when the state is whole (under MPI,
           // the ranks' flags are reduced here). SIGUSR1: the job may be killed soon.
-          const bool asked = takeCheckpointRequest();
+          const bool asked = ranks.agree(takeCheckpointRequest());
           if (sim.time() >= nextCheckpoint && sim.time() < scene.endTime) {
             nextCheckpoint += checkpointEvery;
             checkpoint(); // the last good state: a failure later never overwrites it
@@ -134,11 +167,14 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
             checkpoint();
           }
           // At the end time the run is complete: its final outputs are quicker than a resume.
-          if (const int s = stopSignalReceived(); s && sim.time() < scene.endTime) throw StopRequested{s};
+          if (const int s = ranks.agree(stopSignalReceived()); s && sim.time() < scene.endTime) throw StopRequested{s};
         });
         // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
         // rounding of it.
-        if (interval > 0 && next >= frameTime - 1e-9 * interval) outputs->frame(sim, frame++);
+        if (interval > 0 && next >= frameTime - 1e-9 * interval) {
+          ranks.onRoot([&] { outputs->frame(view, frame); });
+          ++frame;
+        }
       }
     } catch (const NumericalError& e) {
       res.status = RunStatus::NumericalFailure;
@@ -152,18 +188,23 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
       checkpoint();
     }
     bar.finish();
-    if (res.status != RunStatus::Interrupted) {
-      outputs->finish(sim, res.status == RunStatus::Completed);
-      if (res.status == RunStatus::Completed)
-        writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), sim, scene.materialNames);
-    }
+    if (res.status != RunStatus::Interrupted)
+      ranks.onRoot([&] {
+        outputs->finish(view, res.status == RunStatus::Completed);
+        if (res.status == RunStatus::Completed)
+          writeParticlesH5((fs::path(res.outDir) / "particles.h5").string(), view, scene.materialNames);
+      });
+    if (ranks.active()) info.ranks = rankFigures(sim);
     record();
-    writeSummaryJson(summaryFile, sim, info);
+    ranks.onRoot([&] { writeSummaryJson(summaryFile, view, info); });
   } catch (const WriteError& e) {
     writeFailed(e);
   } catch (const fs::filesystem_error& e) { // a folder an output creates
     writeFailed(WriteError(e.path1().string(), e.code().message()));
+  } catch (const PeerFailed&) {
+    record(); // rank 0 failed and reports it; its status is agreed below
   }
+  if (ranks.active()) res.status = RunStatus(ranks.agree(ranks.root() ? int(res.status) : 0));
   res.ok = res.status == RunStatus::Completed;
   return res;
 }

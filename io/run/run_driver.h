@@ -1,7 +1,11 @@
 // `talus run`: a scene from start to end time, writing frames, particles.h5 and summary.json.
 #pragma once
 
+#include "engine/communicator.h"
 #include "io/scene/scene.h"
+
+#include <functional>
+#include <memory>
 
 #include <cstdint>
 #include <string>
@@ -17,6 +21,11 @@ struct RunOptions {
   /// Answer SIGINT/SIGTERM (stop after this step with a checkpoint) and SIGUSR1 (checkpoint now)
   /// for the run's duration (io/run/run_signals.h). The talus program sets it.
   bool handleSignals = false;
+  /// MPI ranks (mpirun talus run): every rank runs runScene with the same scene; rank 0 writes
+  /// every file from a gathered view built by `viewScene` (the scene loaded once more). Null: one
+  /// process.
+  std::shared_ptr<Communicator> ranks;
+  std::function<SceneSetup()> viewScene;
 };
 
 enum class RunStatus {

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <unistd.h>
 
@@ -17,6 +18,10 @@ volatile std::sig_atomic_t gCheckpoint = 0;
 volatile std::sig_atomic_t gAnnounce = 0;
 struct sigaction gPrevious[3];
 constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGUSR1};
+// The context line a stop prints (double-buffered: the driver writes one buffer while the
+// handler may read the other).
+char gContext[2][256] = {{0}, {0}};
+std::atomic<int> gContextActive{0};
 
 // Only async-signal-safe calls here: flags, write(2), sigaction, raise.
 void onStop(int sig) {
@@ -32,6 +37,8 @@ void onStop(int sig) {
   if (gAnnounce) {
     static const char msg[] = "\ntalus: stopping after this step to write a checkpoint (signal again to stop at once)\n";
     [[maybe_unused]] const ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
+    const char* context = gContext[gContextActive.load()];
+    if (context[0]) [[maybe_unused]] const ssize_t w2 = write(STDERR_FILENO, context, strlen(context));
   }
 }
 
@@ -41,6 +48,7 @@ void onCheckpoint(int) { gCheckpoint = 1; }
 
 RunSignals::RunSignals(bool announce) {
   gStops = 0, gStop = 0, gCheckpoint = 0, gAnnounce = announce;
+  gContext[0][0] = gContext[1][0] = 0;
   for (int i = 0; i < 3; ++i) {
     struct sigaction sa{};
     sa.sa_handler = kSignals[i] == SIGUSR1 ? onCheckpoint : onStop;
@@ -52,6 +60,12 @@ RunSignals::RunSignals(bool announce) {
 
 RunSignals::~RunSignals() {
   for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &gPrevious[i], nullptr);
+}
+
+void setStopContext(const std::string& line) {
+  const int next = 1 - gContextActive.load();
+  std::snprintf(gContext[next], sizeof gContext[next], "%s\n", line.c_str());
+  gContextActive.store(next);
 }
 
 int stopSignalReceived() { return gStop; }

@@ -20,6 +20,9 @@ public:
   RunSignals& operator=(const RunSignals&) = delete;
 };
 
+/// A line the first stop signal prints after its own (the run's step and last checkpoint, kept
+/// current by the driver under mpirun, where the launcher's SIGTERM may follow a rank's death).
+void setStopContext(const std::string& line);
 /// SIGINT or SIGTERM once a stop was asked for, else 0.
 int stopSignalReceived();
 /// True once per SIGUSR1 received since the previous call.

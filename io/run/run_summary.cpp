@@ -49,6 +49,18 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   j << "  \"simulated_time\": " << num(sim.time()) << ",\n";
   j << "  \"wall_seconds\": " << num(info.wallSeconds) << ",\n";
   j << "  \"threads\": " << info.threads << ",\n";
+  if (!info.ranks.empty()) {
+    // Per rank: its particles and owning blocks at the end, and where its time went.
+    j << "  \"ranks\": " << info.ranks.size() << ",\n  \"per_rank\": [\n";
+    for (size_t r = 0; r < info.ranks.size(); ++r) {
+      const RankFigures& f = info.ranks[r];
+      j << "    {\"rank\": " << r << ", \"particles\": " << f.particles << ", \"blocks\": " << f.blocks
+        << ", \"compute_seconds\": " << num(f.computeSeconds) << ", \"communication_seconds\": "
+        << num(f.communicationSeconds) << ", \"bytes_sent\": " << f.bytesSent << ", \"rebalances\": " << f.rebalances
+        << "}" << (r + 1 < info.ranks.size() ? "," : "") << "\n";
+    }
+    j << "  ],\n";
+  }
   j << "  \"particles\": " << sim.particleCount() << ",\n";
   j << "  \"particle_steps\": " << sim.particleSteps() << ",\n";
   j << "  \"particle_steps_per_second\": " << num(pss) << ",\n";

@@ -9,6 +9,13 @@
 
 namespace talus {
 
+/// One MPI rank's share of a run (summary.json "ranks").
+struct RankFigures {
+  uint64_t particles = 0, blocks = 0, bytesSent = 0, rebalances = 0;
+  double computeSeconds = 0;       ///< the step's phases other than communication
+  double communicationSeconds = 0; ///< migration, halo, reductions and gathers (waiting included)
+};
+
 struct RunInfo {
   std::string scene;
   double wallSeconds = 0;
@@ -18,6 +25,7 @@ struct RunInfo {
   std::string signal;               ///< the signal that interrupted the run ("SIGTERM")
   std::vector<OutputReport> outputs;
   std::vector<std::string> notes; ///< the scene's notes and warnings (thin bodies, filled DEM cells)
+  std::vector<RankFigures> ranks;  ///< under mpirun, per rank (empty for one process)
 };
 
 void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);

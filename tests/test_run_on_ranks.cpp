@@ -1,0 +1,137 @@
+// `mpirun -np N talus run`: the files are one process's, a run checkpointed at N ranks resumes
+// at M, and a killed rank ends the job with the last checkpoint intact. Skipped without mpirun.
+#include "test_support.h"
+
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+
+using namespace talus;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Runs a shell command; returns its exit status, its output in `out`.
+int shell(const std::string& cmd, std::string& out) {
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  char buf[4096];
+  out.clear();
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// `mpirun --oversubscribe -np n` with Open MPI's allow-run-as-root variables (CI runs as root).
+std::string mpirun(int n) {
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -np " + std::to_string(n) + " ";
+}
+
+bool haveMpirun() {
+  std::string out;
+  return shell("command -v mpirun", out) == 0;
+}
+
+std::string bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Every file of a against b's, except those that differ between two one-process runs too
+/// (summary.json's wall times, a VDB file's unique id).
+void expectSameFiles(const std::string& a, const std::string& b) {
+  size_t compared = 0;
+  for (const auto& e : fs::recursive_directory_iterator(a)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), a);
+    if (rel == "summary.json" || rel.extension() == ".vdb") continue;
+    ASSERT_TRUE(fs::exists(fs::path(b) / rel)) << rel;
+    EXPECT_TRUE(bytes(e.path()) == bytes(fs::path(b) / rel)) << rel << " differs";
+    ++compared;
+  }
+  EXPECT_GT(compared, 10u);
+}
+
+// A short Drucker-Prager collapse on a plane: about two seconds of computing.
+const char* kScene = R"(
+[simulation]
+dx = 0.02
+particles_per_cell = 8
+end_time = 0.12
+[domain]
+min = [0, 0, 0]
+max = [1.3, 0.16, 0.5]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0.02], normal = [0, 0, 1] }
+boundary = { law = "coulomb", friction = 0.5 }
+[[materials]]
+name = "sand"
+model = "drucker_prager"
+density = 1600
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+friction_angle = 30
+[[bodies]]
+material = "sand"
+shape = "box"
+center = [0.12, 0.08, 0.22]
+size = [0.2, 0.16, 0.4]
+[output]
+frame_interval = 0.04
+checkpoint_interval = 0.01
+)";
+
+std::string sceneFile(const std::string& dir) {
+  const std::string f = dir + "/collapse.toml";
+  std::ofstream(f) << kScene;
+  return f;
+}
+
+} // namespace
+
+TEST(RunOnRanks, TheDefaultScenesFilesAtTwoRanksAreOneProcesss) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_default");
+  std::string out;
+  ASSERT_EQ(test::runTalus("run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/one", out), 0) << out;
+  ASSERT_EQ(shell(mpirun(2) + TALUS_BINARY " run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/two", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/two");
+  const std::string summary = bytes(dir + "/two/summary.json");
+  EXPECT_NE(summary.find("\"ranks\": 2"), std::string::npos);
+  EXPECT_NE(summary.find("\"communication_seconds\""), std::string::npos);
+}
+
+TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_resume");
+  const std::string scene = sceneFile(dir);
+  std::string out;
+  ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
+  ASSERT_EQ(shell(mpirun(4) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/four", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/four");
+  // The four ranks' last checkpoint (t = 0.11 s), resumed at two ranks, ends where one process did.
+  ASSERT_EQ(shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --resume " + dir + "/four", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/four");
+}
+
+TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_killed");
+  const std::string scene = sceneFile(dir);
+  const std::string run = dir + "/run";
+  // Rank 1 is killed (SIGKILL: no handler runs) once the run has written its second checkpoint.
+  const std::string cmd = mpirun(2) + "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then (while [ ! -s " + run +
+                          "/checkpoint.h5 ]; do sleep 0.05; done; sleep 0.3; kill -9 $$) & fi; exec " TALUS_BINARY
+                          " run " + scene + " --set simulation.end_time=0.3 --threads 1 --out " + run + "'";
+  std::string out;
+  EXPECT_NE(shell(cmd, out), 0);
+  EXPECT_NE(out.find("rank 1"), std::string::npos) << out;
+  EXPECT_NE(out.find("signal 9"), std::string::npos) << out;
+  EXPECT_NE(out.find("the job was at step"), std::string::npos) << out; // rank 0's line, on mpirun's SIGTERM
+  // The checkpoint on disk is whole: one process resumes from it to the end.
+  std::string resumed;
+  ASSERT_EQ(test::runTalus("run " + scene + " --set simulation.end_time=0.3 --quiet --threads 1 --resume " + run, resumed), 0)
+      << resumed;
+}
