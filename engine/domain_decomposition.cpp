@@ -76,6 +76,7 @@ void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std
 void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
   const size_t rec = recordBytes(g), common = ParticleSet::bytesPerParticle(), sb = g.stateBytesPerParticle();
   const size_t n = in.size() / rec, base = g.particles.size();
+  if (!n) return;
   ParticleSet& P = g.particles;
   P.resize(base + n);
   std::vector<char> state(n * sb);
@@ -92,31 +93,36 @@ size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, R
   const int n = comm_->size(), me = comm_->rank();
   const Real invDx = Real(1) / dx;
   size_t sent = 0;
-  for (MaterialGroup* g : groups) {
+  order_.assign(groups.size(), {});
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    MaterialGroup* g = groups[gi];
     const auto& x = g->particles.x;
     std::vector<std::vector<uint32_t>> to(static_cast<size_t>(n));
+    std::vector<uint8_t> stays(x.size());
     BlockCoord last{INT32_MIN, 0, 0};
     int dest = me;
+    size_t leaving = 0;
     for (size_t p = 0; p < x.size(); ++p) {
       const BlockCoord b = owningBlock(x[p], invDx);
       if (b != last) last = b, dest = owner(b);
-      to[size_t(dest)].push_back(uint32_t(p));
+      stays[p] = dest == me;
+      if (dest != me) to[size_t(dest)].push_back(uint32_t(p)), ++leaving;
     }
-    const bool leaving = to[size_t(me)].size() != x.size();
     std::vector<std::vector<char>> send(static_cast<size_t>(n));
     for (int r = 0; r < n; ++r)
       if (r != me) packParticles(*g, to[size_t(r)], send[size_t(r)]), sent += to[size_t(r)].size();
-    auto recv = comm_->exchange(send);
-    bool arriving = false;
-    for (int r = 0; r < n; ++r) arriving |= r != me && !recv[size_t(r)].empty();
-    if (!leaving && !arriving) continue;
-    // Rebuild in rank order: lower ranks' particles, our own, higher ranks' (file comment).
-    std::vector<char> own;
-    packParticles(*g, to[size_t(me)], own);
-    recv[size_t(me)] = std::move(own);
-    g->particles.resize(0);
-    g->resizeState(0);
-    for (int r = 0; r < n; ++r) appendParticles(*g, recv[size_t(r)]);
+    const auto recv = comm_->exchange(send);
+    // Only what moves is copied: leavers are compacted out, arrivals appended (lower ranks'
+    // first), and binning's stable sort takes the lower ranks' arrivals before our own particles.
+    if (leaving) {
+      g->particles.forEachArray([&](auto& a) { compactInPlace(a, stays); });
+      g->compactState(stays);
+    }
+    const size_t own = g->size();
+    for (int r = 0; r < me; ++r) appendParticles(*g, recv[size_t(r)]);
+    const size_t lower = g->size() - own;
+    for (int r = me + 1; r < n; ++r) appendParticles(*g, recv[size_t(r)]);
+    if (lower) order_[gi] = {{own, own + lower}, {0, own}, {own + lower, g->size()}};
   }
   return sent;
 }

@@ -10,6 +10,7 @@
 
 #include "engine/communicator.h"
 #include "engine/material_group.h"
+#include "engine/particle_binning.h"
 
 #include <array>
 #include <memory>
@@ -55,8 +56,10 @@ public:
   /// rank r gets the blocks whose cumulative count, in tree order, starts in [r, r+1) N/size.
   void balance(std::vector<std::pair<BlockCoord, uint64_t>> blocks);
   /// Collective. Moves every particle to the rank owning its block (see the file comment).
-  /// Returns the number of particles this rank sent away.
+  /// Returns the number of particles this rank sent away. The next binning must take order().
   size_t migrate(const std::vector<MaterialGroup*>& groups, Real dx);
+  /// Per group, the order binning's stable sort must follow after migrate (empty: the arrays').
+  const std::vector<ParticleOrder>& order() const { return order_; }
   /// Keeps only the particles of this rank's blocks (every rank holding every particle).
   void keepOwn(const std::vector<MaterialGroup*>& groups, Real dx);
 
@@ -69,6 +72,7 @@ private:
   std::shared_ptr<Communicator> comm_;
   double threshold_;
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
+  std::vector<ParticleOrder> order_;
 };
 
 } // namespace talus

@@ -13,7 +13,7 @@ size_t chunkCount(size_t n) { return (n + kChunk - 1) / kChunk; }
 } // namespace
 
 void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, ReorderScratch& scratch,
-                  const Periodicity* periodic) {
+                  const Periodicity* periodic, const std::vector<ParticleOrder>* order) {
   const Real invDx = Real(1) / grid.dx;
 
   // 1. Owning blocks. Particles are mostly sorted already, so runs of equal blocks are long
@@ -44,18 +44,30 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
     uint32_t block, count, to = 0; // `to`: the run's first index in the sorted order
   };
   std::vector<uint32_t> particleCount(nBlocks, 0);
-  for (MaterialGroup* g : groups) {
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    MaterialGroup* g = groups[gi];
     auto& x = g->particles.x;
     const size_t n = x.size();
     auto& blockOf = scratch.blockOf;
     blockOf.resize(n);
-    std::vector<std::vector<Run>> runs(chunkCount(n));
+    // Chunks in the order the sort is stable in: the array's, or the segments given for it.
+    std::vector<std::pair<size_t, size_t>> chunks;
+    auto segment = [&](size_t b, size_t e) {
+      for (size_t c = b; c < e; c += kChunk) chunks.push_back({c, std::min(e, c + kChunk)});
+    };
+    if (order && !(*order)[gi].empty())
+      for (const auto& [b, e] : (*order)[gi]) segment(b, e);
+    else
+      segment(0, n);
+    bool inPlace = true; // the chunks follow the array
+    for (size_t c = 1; c < chunks.size(); ++c) inPlace = inPlace && chunks[c].first == chunks[c - 1].second;
+    std::vector<std::vector<Run>> runs(chunks.size());
     tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
       BlockTopology::Lookup lookup(grid.topology);
-      const size_t end = std::min(n, (c + 1) * kChunk);
+      const size_t end = chunks[c].second;
       BlockCoord last{INT32_MIN, 0, 0};
       uint32_t lastIndex = 0;
-      for (size_t p = c * kChunk; p < end; ++p) {
+      for (size_t p = chunks[c].first; p < end; ++p) {
         const BlockCoord b = owningBlock(x[p], invDx);
         if (b != last) last = b, lastIndex = uint32_t(lookup.find(b));
         if (runs[c].empty() || runs[c].back().block != lastIndex) runs[c].push_back({lastIndex, 0});
@@ -66,7 +78,7 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
 
     auto& start = g->blockStart;
     start.assign(nBlocks + 1, 0);
-    bool sorted = true;
+    bool sorted = inPlace;
     uint32_t previous = 0;
     for (const auto& chunk : runs)
       for (const Run& r : chunk) {
@@ -85,7 +97,7 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
       auto& perm = scratch.perm;
       perm.resize(n);
       tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
-        uint32_t p = uint32_t(c * kChunk);
+        uint32_t p = uint32_t(chunks[c].first);
         for (const Run& r : runs[c])
           for (uint32_t i = 0; i < r.count; ++i) perm[r.to + i] = p++;
       });

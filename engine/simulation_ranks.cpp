@@ -47,7 +47,7 @@ void Simulation::binAndBalance() {
   ranks_->migrate(groupPtrs_, grid_.dx);
   times_.halo += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+  binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
   times_.bin += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
   if (ranks_->imbalance(particleCount()) > ranks_->threshold()) {
@@ -64,7 +64,7 @@ void Simulation::binAndBalance() {
     ++ranks_->rebalances;
     times_.halo += secondsSince(t0);
     t0 = std::chrono::steady_clock::now();
-    binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+    binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
     times_.bin += secondsSince(t0);
   } else {
     times_.halo += secondsSince(t0);

@@ -176,6 +176,16 @@ std::vector<std::string> benchmarkCaseNames() {
   return n;
 }
 
+SceneSetup benchmarkScene(const std::string& name, double scale) {
+  auto it = cases().find(name);
+  if (it == cases().end()) throw std::runtime_error("unknown benchmark case '" + name + "'");
+  const Case& c = it->second;
+  char dxs[32];
+  std::snprintf(dxs, sizeof dxs, "%.6g", c.dx / std::cbrt(scale));
+  return c.toml.empty() ? loadSceneString(defaultSceneText(), "bench:" + name, {"simulation.dx=" + std::string(dxs)})
+                        : loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
+}
+
 namespace {
 
 BenchResult timeSteps(const std::string& name, Simulation& sim, int threads, int warmup, int steps) {
@@ -231,18 +241,10 @@ std::vector<BenchResult> measureBenchmarks(const BenchOptions& opt, bool print) 
     std::printf("%-10s %7s %9s %7s %12s %12s %7s %7s %7s %7s %7s %8s %9s %8s\n", "case", "threads", "particles", "steps",
                 "p-steps/s", "per core", "bin%", "p2g%", "grid%", "g2p%", "other%", "B/part", "scratchB", "KB/block");
   for (const std::string& name : opt.cases) {
-    auto it = cases().find(name);
-    if (it == cases().end()) throw std::runtime_error("unknown benchmark case '" + name + "'");
-    const Case& c = it->second;
-    const double dx = c.dx / std::cbrt(opt.scale);
-    char dxs[32];
-    std::snprintf(dxs, sizeof dxs, "%.6g", dx);
     double oneThread = 0;
     for (int threads : opt.threads) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-      SceneSetup s = c.toml.empty()
-                         ? loadSceneString(defaultSceneText(), "bench:" + name, {"simulation.dx=" + std::string(dxs)})
-                         : loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name);
+      SceneSetup s = benchmarkScene(name, opt.scale);
       Simulation sim(s.settings, std::move(s.groups));
       BenchResult r = timeSteps(name, sim, threads, opt.warmup, opt.steps);
       const double pss = r.particleStepsPerSecond;

@@ -1,6 +1,10 @@
 // `talus bench`: throughput (particle-steps per second per core), time per phase, memory.
 #pragma once
 
+#include "engine/communicator.h"
+#include "io/scene/scene.h"
+
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +32,12 @@ struct BenchResult {
 };
 
 std::vector<std::string> benchmarkCaseNames();
+/// The scene of a benchmark case, its particle count multiplied by about `scale`.
+SceneSetup benchmarkScene(const std::string& name, double scale);
+
+/// `mpirun -np N talus bench --ranks`: each case distributed over the N ranks (threads per rank:
+/// the first of options.threads); rank 0 prints throughput, communication time and bytes.
+int runRankBenchmarks(const BenchOptions& options, const std::shared_ptr<Communicator>& ranks);
 /// Runs the cases; `print` writes the table to stdout as it goes.
 std::vector<BenchResult> measureBenchmarks(const BenchOptions& options, bool print);
 int runBenchmarks(const BenchOptions& options);

@@ -151,6 +151,9 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--threads", bench.threads, "Thread counts to run (default: 1 2)");
   benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
   benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
+  bool benchRanks = false;
+  benchCmd->add_flag("--ranks", benchRanks,
+                     "Under mpirun: distribute each case over the ranks (threads per rank: the first --threads)");
 
   TerrainCommandOptions terrainOpt;
   auto* terrainCmd = addTerrainCommand(app, terrainOpt);
@@ -167,6 +170,10 @@ int main(int argc, char** argv) {
     if (!avaframe.empty()) sets.push_back(avaFrameOverride(avaframe));
     if (*run) return cmdRun(scene, out, threads, sets, quiet, resume);
     if (*check) return cmdCheck(scene, sets);
+    if (*benchCmd && benchRanks) {
+      if (!gRanks) throw InputError("--ranks", 0, "", "start the benchmark with mpirun: mpirun -np 2 talus bench --ranks --threads 1");
+      return runRankBenchmarks(bench, gRanks);
+    }
     if (*benchCmd) return runBenchmarks(bench);
     if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, singlePpc, singleCfl, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
