@@ -41,8 +41,10 @@ public:
   const std::vector<RemoteRows>& remote(int colour) const { return remote_[size_t(colour)]; }
   /// Per active block: 1 when this rank adds the block's collider loads (the lowest rank holding it).
   const std::vector<uint8_t>& counted() const { return counted_; }
-  /// Halo bytes this rank sent in the last exchange.
+  /// Halo bytes this rank sent in the last exchange, and the owning blocks it scattered ahead
+  /// (those whose stencils reach blocks other ranks hold).
   size_t lastBytes() const { return lastBytes_; }
+  size_t boundaryBlocks() const { return stored_.size() / kPadNodes; }
 
 private:
   std::vector<int32_t> slot_;

@@ -90,6 +90,7 @@ public:
   void distribute(std::shared_ptr<Communicator> comm, double imbalance = 0.1);
   /// The ranks, or null for one process.
   const DomainDecomposition* ranks() const { return ranks_.get(); }
+  const HaloExchange& halo() const { return halo_; }
   /// Collective: rank 0's `view` (a Simulation built from the same scene, never stepped) gets
   /// every rank's particles in one process's order, the clock, counters, loads and mass ledger,
   /// so outputs written from it are one process's files. Other ranks pass null.

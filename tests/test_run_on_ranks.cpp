@@ -1,5 +1,6 @@
 // `mpirun -np N talus run`: the files are one process's, a run checkpointed at N ranks resumes
 // at M, and a killed rank ends the job with the last checkpoint intact. Skipped without mpirun.
+#include "small_collapse.h"
 #include "test_support.h"
 
 #include <filesystem>
@@ -53,36 +54,17 @@ void expectSameFiles(const std::string& a, const std::string& b) {
   EXPECT_GT(compared, 10u);
 }
 
-// A short Drucker-Prager collapse on a plane: about two seconds of computing.
-const char* kScene = R"(
-[simulation]
-dx = 0.02
-particles_per_cell = 8
-end_time = 0.12
-[domain]
-min = [0, 0, 0]
-max = [1.3, 0.16, 0.5]
-walls = "slip"
-[terrain]
-plane = { point = [0, 0, 0.02], normal = [0, 0, 1] }
-boundary = { law = "coulomb", friction = 0.5 }
-[[materials]]
-name = "sand"
-model = "drucker_prager"
-density = 1600
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-friction_angle = 30
-[[bodies]]
-material = "sand"
-shape = "box"
-center = [0.12, 0.08, 0.22]
-size = [0.2, 0.16, 0.4]
+/// `text` with "key = old" replaced by "key = value".
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  return text.replace(text.find(from), from.size(), to);
+}
+
+// The small collapse to 0.12 s, with frames and a checkpoint every 0.01 s: about two seconds.
+const std::string kScene = with(test::kSmallCollapse, "end_time = 1", "end_time = 0.12") + R"(
 [output]
 frame_interval = 0.04
 checkpoint_interval = 0.01
 )";
-
 std::string sceneFile(const std::string& dir) {
   const std::string f = dir + "/collapse.toml";
   std::ofstream(f) << kScene;

@@ -41,8 +41,8 @@ int runRankBenchmarks(const BenchOptions& opt, const std::shared_ptr<Communicato
     const double imbalance = sim.ranks()->imbalance(sim.particleCount());
     const double pss = double(sim.particleSteps() - ps0) / wall;
     const PhaseTimes& pt = sim.phaseTimes();
-    std::fprintf(stderr, "rank %d: %zu particles, %zu blocks, compute %.3f s (bin %.3f p2g %.3f grid %.3f g2p %.3f), halo %.3f s, mpi %.3f s, rebalances %llu\n",
-                 comm.rank(), sim.particleCount(), sim.grid().owning.size(), pt.total() - pt.halo, pt.bin, pt.p2g, pt.grid, pt.g2p, pt.halo,
+    std::fprintf(stderr, "rank %d: %zu particles, %zu blocks (%zu on the boundary, halo %zu B/step), compute %.3f s (bin %.3f p2g %.3f grid %.3f g2p %.3f), halo %.3f s, mpi %.3f s, rebalances %llu\n",
+                 comm.rank(), sim.particleCount(), sim.grid().owning.size(), sim.halo().boundaryBlocks(), sim.halo().lastBytes(), pt.total() - pt.halo, pt.bin, pt.p2g, pt.grid, pt.g2p, pt.halo,
                  comm.seconds, (unsigned long long)sim.ranks()->rebalances);
     if (root)
       std::printf("%-10s %5d %7d %9zu %12.3e %12.3e %8.1f %8.1f %12.4g %10.2f %8.1f%%\n", name.c_str(), comm.size(),

@@ -6,6 +6,7 @@
 #include "engine/mpi_communicator.h"
 #include "engine/simulation.h"
 #include "io/scene/scene.h"
+#include "small_collapse.h"
 
 #include <cstring>
 #include <gtest/gtest.h>
@@ -113,32 +114,7 @@ size = [0.6, 0.4, 0.4]
 velocity = [6, 0, 0]
 )";
 
-// A Drucker-Prager column collapsing on a frictional floor (a = 2).
-const char* kCollapse = R"(
-[simulation]
-dx = 0.02
-particles_per_cell = 8
-end_time = 1
-[domain]
-min = [0, 0, 0]
-max = [1.3, 0.16, 0.5]
-walls = "slip"
-[terrain]
-plane = { point = [0, 0, 0.02], normal = [0, 0, 1] }
-boundary = { law = "coulomb", friction = 0.5 }
-[[materials]]
-name = "sand"
-model = "drucker_prager"
-density = 1600
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-friction_angle = 30
-[[bodies]]
-material = "sand"
-shape = "box"
-center = [0.12, 0.08, 0.22]
-size = [0.2, 0.16, 0.4]
-)";
+const std::string kCollapse = test::kSmallCollapse;
 
 } // namespace
 

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""Communication model of a distributed Talus run (docs/scaling.md), from measured costs.
+
+Inputs measured on the 2-core VM (commands in docs/scaling.md):
+  - compute rate per core on the terrain case (talus bench --case terrain --threads 1)
+  - halo bytes per rank per step and boundary blocks per rank on the terrain case at dx 2 m
+    (mpirun -np 4 talus bench --ranks --case terrain --scale 8 --threads 1; stderr per rank)
+  - particles per owning block (same run) for the size of the owning-block all-gather
+Network figures are typical, not measured here: 10 Gb/s Ethernet (TCP) and 100 Gb/s InfiniBand.
+"""
+import math
+
+RATE_PER_CORE = 3.6e6          # particle-steps/s, terrain case, 1 thread (measured 3.6-3.7e6)
+PARALLEL_EFF = 0.9             # threads within a rank (measured 79-98 % at 2 threads)
+HALO_BYTES_REF = 310e3         # mean halo bytes sent per rank per step at 4 ranks, dx 2 m
+PARTICLES_REF = 119e3          # particles per rank in that run
+PARTICLES_PER_BLOCK = 680      # particles per owning block in that run (476 254 / 699)
+COLLECTIVES = 16               # latency-bound collectives per step (dt 4, speed, finite, count,
+                               # imbalance 2, loads, 2 all-to-all counts, owning all-gather,
+                               # run: root flag, 2 signal agreements, minima)
+NEIGHBOURS = 6                 # halo messages per rank per step
+RECORD_BYTES = 130             # bytes per particle gathered to rank 0 for per-step outputs
+NETWORKS = {"10 Gb/s Ethernet": (30e-6, 1.25e9), "100 Gb/s InfiniBand": (2e-6, 12.5e9)}
+
+
+def step(n_total, ranks, threads, alpha, beta):
+    n = n_total / ranks
+    compute = n / (RATE_PER_CORE * threads * (PARALLEL_EFF if threads > 1 else 1.0))
+    # A rank's share of a thin flow is a patch: its boundary grows as the square root of its area.
+    halo = HALO_BYTES_REF * math.sqrt(n / PARTICLES_REF)
+    halo_t = NEIGHBOURS * alpha + halo / beta
+    blocks = n_total / PARTICLES_PER_BLOCK
+    gather_t = alpha * math.log2(ranks) + blocks * 12 * (ranks - 1) / ranks / beta
+    coll_t = COLLECTIVES * alpha * math.log2(ranks)
+    comm = halo_t + gather_t + coll_t
+    return compute, comm, halo
+
+
+def main():
+    n_total = 20e6
+    print("| network | ranks | threads/rank | particles/rank | compute ms/step | halo KB/rank/step "
+          "| communication ms/step | communication share | p-steps/s |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for net, (alpha, beta) in NETWORKS.items():
+        for ranks in (16, 100):
+            for threads in (1, 16):
+                c, m, h = step(n_total, ranks, threads, alpha, beta)
+                print(f"| {net} | {ranks} | {threads} | {n_total / ranks:,.0f} | {1e3 * c:.2f} | {h / 1e3:.0f} "
+                      f"| {1e3 * m:.3f} | {100 * m / (c + m):.1f} % | {n_total / (c + m):.2e} |")
+    print()
+    print("Weak scaling (1.25 M particles per rank, 16 threads each), 100 Gb/s:")
+    alpha, beta = NETWORKS["100 Gb/s InfiniBand"]
+    for ranks in (1, 4, 16, 64, 100, 400):
+        c, m, _ = step(1.25e6 * ranks, ranks, 16, alpha, beta) if ranks > 1 else (1.25e6 / (RATE_PER_CORE * 16 * PARALLEL_EFF), 0, 0)
+        print(f"  {ranks:4d} ranks: step {1e3 * (c + m):.2f} ms, efficiency {100 * c / (c + m):.1f} %")
+    print()
+    print("Per-step outputs of `talus run` gathered to rank 0 (20 M particles):")
+    for net, (alpha, beta) in NETWORKS.items():
+        print(f"  {net}: {n_total * RECORD_BYTES / 1e9:.1f} GB per step into rank 0: {n_total * RECORD_BYTES / beta:.2f} s per step")
+
+
+if __name__ == "__main__":
+    main()
