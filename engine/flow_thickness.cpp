@@ -22,29 +22,45 @@ static BlockCoord lineBlock(const BlockCoord& c, int axis) {
 
 uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) { return blockKey(lineBlock(c, axis)); }
 
-void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
+void FlowColumns::clear() {
   for (auto& l : lines_) l.clear();
-  const int C = grid.extraChannels;
-  // Serial in block order: the sums are the same at any thread count.
-  for (uint32_t b = 0; b < grid.blockCount(); ++b) {
-    const BlockCoord& c = grid.topology.coord(b);
-    const Vec4* nodes = grid.block(b);
-    const float* extra = grid.blockExtra(b);
-    Line* L[3] = {nullptr, nullptr, nullptr};
-    for (int n = 0; n < kBlockNodes; ++n) {
-      const float v = extra[size_t(n) * size_t(C) + size_t(volumeChannel)];
-      if (!(v > 0)) continue;
-      for (int a = 0; a < 3; ++a) {
-        if (!L[a]) {
-          L[a] = &lines_[a][lineKey(c, a)];
-          L[a]->at = lineBlock(c, a);
-        }
-        L[a]->volume[lineIndex(n, a)] += v;
-        L[a]->mass[lineIndex(n, a)] += float(nodes[n][0]);
+}
+
+void FlowColumns::addBlock(const BlockCoord& c, const float* volume, const float* mass) {
+  Line* L[3] = {nullptr, nullptr, nullptr};
+  for (int n = 0; n < kBlockNodes; ++n) {
+    const float v = volume[n];
+    if (!(v > 0)) continue;
+    for (int a = 0; a < 3; ++a) {
+      if (!L[a]) {
+        L[a] = &lines_[a][lineKey(c, a)];
+        L[a]->at = lineBlock(c, a);
       }
+      L[a]->volume[lineIndex(n, a)] += v;
+      L[a]->mass[lineIndex(n, a)] += mass[n];
     }
   }
+}
+
+void FlowColumns::finish() {
   for (int a = 0; a < 3; ++a) dilate(a);
+}
+
+void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
+  clear();
+  const int C = grid.extraChannels;
+  float volume[kBlockNodes], mass[kBlockNodes];
+  // Serial in block order: the sums are the same at any thread count.
+  for (uint32_t b = 0; b < grid.blockCount(); ++b) {
+    const Vec4* nodes = grid.block(b);
+    const float* extra = grid.blockExtra(b);
+    for (int n = 0; n < kBlockNodes; ++n) {
+      volume[n] = extra[size_t(n) * size_t(C) + size_t(volumeChannel)];
+      mass[n] = float(nodes[n][0]);
+    }
+    addBlock(grid.topology.coord(b), volume, mass);
+  }
+  finish();
 }
 
 void FlowColumns::dilate(int axis) {

@@ -23,6 +23,11 @@ class FlowColumns {
 public:
   /// Sums P2G's volume channel (grid.extra, channel `volumeChannel`) and node masses per line.
   void build(const SparseGrid& grid, int volumeChannel);
+  /// The same in parts (MPI ranks gather every rank's blocks): clear, then every block with flow
+  /// in block (tree) order, its 512 node volumes and masses, then finish.
+  void clear();
+  void addBlock(const BlockCoord& c, const float* volume, const float* mass);
+  void finish();
 
   /// The lines through a block, one per axis (null where no flow).
   struct Line {

@@ -145,7 +145,10 @@ double Simulation::step(double dtCap) {
     prm.materialLaws = &materialLaws_;
     prm.counted = ranks_ ? &halo_.counted() : nullptr;
     if (periodic_.any()) periodic_.fold(grid_);
-    if (needsThickness_) columns_.build(grid_, 0);
+    if (needsThickness_) {
+      if (ranks_) buildColumnsOnRanks();
+      else columns_.build(grid_, 0);
+    }
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
     if (periodic_.any()) periodic_.unfold(grid_);
   }

@@ -166,6 +166,7 @@ private:
   void binAndBalance();
   void reduceLoads(Real dt);
   void reduceGroupMinima();
+  void buildColumnsOnRanks();
   [[noreturn]] void checkFiniteOnRanks() const;
   std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty
 

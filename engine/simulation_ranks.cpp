@@ -29,8 +29,6 @@ std::vector<std::pair<BlockCoord, uint64_t>> blockCounts(const SparseGrid& grid,
 
 void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
-  if (needsThickness_)
-    throw std::invalid_argument("basal laws that need the flow thickness (voellmy, samosat) do not run on several ranks yet (run without mpirun)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
   // Every rank holds every particle here: the same binning everywhere gives the same ranges.
   binParticles(groupPtrs_, grid_, reorder_, &periodic_);
@@ -112,6 +110,50 @@ void Simulation::reduceLoads(Real dt) {
 } // namespace talus
 
 namespace talus {
+
+void Simulation::buildColumnsOnRanks() {
+  // Lines cross the whole grid: every rank gets every block with flow (from the rank that counts
+  // it, whose node sums are complete) and adds them in one process's order. 4 KB per block.
+  const auto& counted = halo_.counted();
+  const int C = grid_.extraChannels;
+  const size_t rec = sizeof(BlockCoord) + 2 * kBlockNodes * sizeof(float);
+  std::vector<char> mine;
+  std::vector<float> volume(kBlockNodes), mass(kBlockNodes);
+  for (uint32_t b = 0; b < grid_.blockCount(); ++b) {
+    if (!counted[b]) continue;
+    const Vec4* nodes = grid_.block(b);
+    const float* extra = grid_.blockExtra(b);
+    bool flow = false;
+    for (int n = 0; n < kBlockNodes; ++n) {
+      volume[size_t(n)] = extra[size_t(n) * size_t(C)];
+      mass[size_t(n)] = float(nodes[n][0]);
+      flow |= volume[size_t(n)] > 0;
+    }
+    if (!flow) continue;
+    const size_t at = mine.size();
+    mine.resize(at + rec);
+    std::memcpy(mine.data() + at, &grid_.topology.coord(b), sizeof(BlockCoord));
+    std::memcpy(mine.data() + at + sizeof(BlockCoord), volume.data(), kBlockNodes * sizeof(float));
+    std::memcpy(mine.data() + at + sizeof(BlockCoord) + kBlockNodes * sizeof(float), mass.data(), kBlockNodes * sizeof(float));
+  }
+  std::vector<size_t> counts;
+  const std::vector<char> all = ranks_->comm().allGather(mine, counts);
+  std::vector<const char*> blocks;
+  for (size_t at = 0; at < all.size(); at += rec) blocks.push_back(all.data() + at);
+  auto coordOf = [](const char* p) {
+    BlockCoord c;
+    std::memcpy(&c, p, sizeof c);
+    return c;
+  };
+  std::sort(blocks.begin(), blocks.end(), [&](const char* x, const char* y) { return treeOrderLess(coordOf(x), coordOf(y)); });
+  columns_.clear();
+  for (const char* p : blocks) {
+    std::memcpy(volume.data(), p + sizeof(BlockCoord), kBlockNodes * sizeof(float));
+    std::memcpy(mass.data(), p + sizeof(BlockCoord) + kBlockNodes * sizeof(float), kBlockNodes * sizeof(float));
+    columns_.addBlock(coordOf(p), volume.data(), mass.data());
+  }
+  columns_.finish();
+}
 
 void Simulation::reduceGroupMinima() {
   for (auto* g : groupPtrs_) {
