@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace talus {
 
@@ -27,19 +28,32 @@ void DomainDecomposition::balance(std::vector<std::pair<BlockCoord, uint64_t>> b
   const int n = comm_->size();
   const BlockCoord top{INT32_MAX, INT32_MAX, INT32_MAX};
   first_.assign(size_t(n - 1), top);
+  // Rank r's range starts at the first block whose cumulative count reaches start[r].
+  std::vector<double> start(size_t(n), 0.0);
+  for (int r = 1; r < n; ++r)
+    start[size_t(r)] = shares_.empty() ? double(r) / n * double(total) : start[size_t(r - 1)] + shares_[size_t(r - 1)] * double(total);
   uint64_t before = 0;
   int r = 1;
   for (const auto& [c, count] : blocks) {
-    // The block starting at `before` goes to the rank whose share [r N/n, (r+1) N/n) holds it.
-    while (r < n && before * uint64_t(n) >= uint64_t(r) * total) first_[size_t(r++ - 1)] = c;
+    // The block starting at `before` goes to the rank whose share of the total holds it.
+    while (r < n && (shares_.empty() ? before * uint64_t(n) >= uint64_t(r) * total : double(before) >= start[size_t(r)]))
+      first_[size_t(r++ - 1)] = c;
     before += count;
   }
 }
 
+void DomainDecomposition::setShares(std::vector<double> shares) {
+  if (!shares.empty() && shares.size() != size_t(comm_->size())) throw std::invalid_argument("setShares: one share per rank");
+  shares_ = std::move(shares);
+}
+
 double DomainDecomposition::imbalance(size_t localParticles) const {
-  const double most = comm_->maxOf(double(localParticles));
   const double total = double(comm_->sumOf(localParticles));
-  return total > 0 ? most / (total / comm_->size()) - 1 : 0;
+  if (total <= 0) return 0;
+  const double share = shares_.empty() ? 1.0 / comm_->size() : shares_[size_t(comm_->rank())];
+  // A rank meant to hold nothing that holds something is as unbalanced as it gets.
+  const double mine = share > 0 ? double(localParticles) / (share * total) : localParticles ? 1e30 : 0;
+  return comm_->maxOf(mine) - 1;
 }
 
 namespace {
@@ -87,6 +101,24 @@ void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
     std::memcpy(state.data() + i * sb, in.data() + i * rec + common, sb);
   }
   g.appendState(state.data(), n);
+}
+
+constexpr size_t kKinematicBytes = 2 * sizeof(Vec3) + sizeof(Real);
+
+void packKinematics(const MaterialGroup& g, std::vector<char>& out) {
+  const ParticleSet& P = g.particles;
+  out.resize(P.size() * kKinematicBytes);
+  char* o = out.data();
+  for (size_t p = 0; p < P.size(); ++p) put(o, P.x[p]), put(o, P.v[p]), put(o, P.mass[p]);
+}
+
+void unpackKinematics(const std::vector<char>& in, MaterialGroup& g) {
+  const size_t n = in.size() / kKinematicBytes;
+  ParticleSet& P = g.particles;
+  P.resize(n);
+  g.resizeState(n);
+  const char* s = in.data();
+  for (size_t p = 0; p < n; ++p) take(s, P.x[p]), take(s, P.v[p]), take(s, P.mass[p]);
 }
 
 size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, Real dx) {

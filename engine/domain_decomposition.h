@@ -39,6 +39,10 @@ inline bool treeOrderLess(const BlockCoord& a, const BlockCoord& b) {
 /// ParticleSet::bytesPerParticle() + g.stateBytesPerParticle() bytes; and records appended to g.
 void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out);
 void appendParticles(MaterialGroup& g, const std::vector<char>& in);
+/// Positions, velocities and masses of all of g's particles (28 bytes each); unpacking resizes g
+/// to the records' count and fills those three arrays only.
+void packKinematics(const MaterialGroup& g, std::vector<char>& out);
+void unpackKinematics(const std::vector<char>& in, MaterialGroup& g);
 
 class DomainDecomposition {
 public:
@@ -53,8 +57,13 @@ public:
   int owner(const BlockCoord& c) const;
 
   /// Collective. New ranges from the global owning blocks and their particle counts (any order):
-  /// rank r gets the blocks whose cumulative count, in tree order, starts in [r, r+1) N/size.
+  /// rank r gets the blocks whose cumulative count, in tree order, starts in [r, r+1) N/size,
+  /// or in its share of N after setShares.
   void balance(std::vector<std::pair<BlockCoord, uint64_t>> blocks);
+  /// The fraction of the particles each rank should own (size() values >= 0, summing to 1; the
+  /// same on every rank). Empty: equal shares. Used by the next balance and imbalance; the
+  /// results do not depend on the ranges, only the time does.
+  void setShares(std::vector<double> shares);
   /// Collective. Moves every particle to the rank owning its block (see the file comment).
   /// Returns the number of particles this rank sent away. The next binning must take order().
   size_t migrate(const std::vector<MaterialGroup*>& groups, Real dx);
@@ -63,7 +72,8 @@ public:
   /// Keeps only the particles of this rank's blocks (every rank holding every particle).
   void keepOwn(const std::vector<MaterialGroup*>& groups, Real dx);
 
-  /// Collective: (max / mean - 1) of the ranks' particle counts.
+  /// Collective: (max / target - 1) of the ranks' particle counts; the target is the mean, or
+  /// the rank's share of the total.
   double imbalance(size_t localParticles) const;
   double threshold() const { return threshold_; }
   uint64_t rebalances = 0;
@@ -72,6 +82,7 @@ private:
   std::shared_ptr<Communicator> comm_;
   double threshold_;
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
+  std::vector<double> shares_;    ///< empty: equal
   std::vector<ParticleOrder> order_;
 };
 

@@ -177,22 +177,30 @@ void Simulation::checkFiniteOnRanks() const {
   throw NumericalError("non-finite particle state at step " + std::to_string(steps_));
 }
 
-void Simulation::gatherInto(Simulation* view) {
+void Simulation::gatherInto(Simulation* view, GatherScope scope) {
   Communicator& comm = ranks_->comm();
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
     const MaterialGroup& g = *groupPtrs_[gi];
-    std::vector<uint32_t> all(g.size());
-    for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
     std::vector<char> mine;
-    packParticles(g, all, mine);
+    if (scope == GatherScope::Whole) {
+      std::vector<uint32_t> all(g.size());
+      for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
+      packParticles(g, all, mine);
+    } else {
+      packKinematics(g, mine);
+    }
     std::vector<size_t> counts;
     const std::vector<char> gathered = comm.gather(mine, counts);
     if (!view) continue;
     MaterialGroup& to = *view->groupPtrs_[gi];
-    to.particles.resize(0);
-    to.resizeState(0);
-    appendParticles(to, gathered);
+    if (scope == GatherScope::Whole) {
+      to.particles.resize(0);
+      to.resizeState(0);
+      appendParticles(to, gathered);
+    } else {
+      unpackKinematics(gathered, to);
+    }
     to.setRankMinima(g.rankMinima());
   }
   std::vector<double> removed = massRemoved_;

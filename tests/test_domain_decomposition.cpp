@@ -78,3 +78,20 @@ TEST(DomainDecomposition, MoreRanksThanBlocksLeavesSomeRanksEmpty) {
   // Ranks 1 and 3 hold nothing; blocks beyond the last one belong to the last rank with a range.
   EXPECT_EQ(dd.owner({5, 5, 5}), 2);
 }
+
+TEST(DomainDecomposition, SharesSizeTheRanges) {
+  // Rank 0 writes the outputs under talus run and may be given a smaller share, or none.
+  std::vector<std::pair<BlockCoord, uint64_t>> blocks;
+  for (int x = 0; x < 40; ++x) blocks.push_back({{x, 0, 0}, 100});
+  for (const std::vector<double>& shares : {std::vector<double>{0.1, 0.3, 0.6}, std::vector<double>{0, 0.5, 0.5}}) {
+    DomainDecomposition dd(std::make_shared<FakeRanks>(0, 3), 0.1);
+    dd.setShares(shares);
+    dd.balance(blocks);
+    std::vector<double> load(3, 0);
+    for (const auto& [c, count] : blocks) load[size_t(dd.owner(c))] += double(count);
+    // Within one block (100 particles) of each share of the 4000.
+    for (int r = 0; r < 3; ++r) EXPECT_NEAR(load[size_t(r)], shares[size_t(r)] * 4000, 100.0) << "rank " << r;
+  }
+  DomainDecomposition dd(std::make_shared<FakeRanks>(0, 3), 0.1);
+  EXPECT_THROW(dd.setShares({0.5, 0.5}), std::invalid_argument);
+}

@@ -86,6 +86,10 @@ struct OutputSettings {
   std::vector<PathSpec> paths;
   std::vector<ProbeSpec> probes;
   MapSettings maps;
+
+  /// Whether an output reads the particles after every step (the series and the maps; frame
+  /// formats read them at frames only). Under MPI ranks this decides the per-step gather.
+  bool readsEveryStep() const { return series || maps.enabled; }
 };
 
 } // namespace talus

@@ -60,9 +60,12 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
     viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
   }
   Simulation& view = viewed ? *viewed : sim;
-  auto gather = [&] {
-    if (ranks.active()) sim.gatherInto(viewed.get());
+  // Whole particles for frames, checkpoints and the end; positions, velocities and masses (all
+  // the per-step outputs read) after every other step.
+  auto gather = [&](Simulation::GatherScope scope) {
+    if (ranks.active()) sim.gatherInto(viewed.get(), scope);
   };
+  auto gatherWhole = [&] { gather(Simulation::GatherScope::Whole); };
   RunInfo info;
   info.scene = scene.file;
   info.threads = threads;
@@ -129,9 +132,10 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
     }
     if (ranks.active()) {
       sim.distribute(opt.ranks);
-      gather();
+      gatherWhole();
     }
     auto checkpoint = [&] {
+      gatherWhole();
       ranks.onRoot([&] {
         writeCheckpoint(checkpointFile, view, identity, [&](StateArchive& a) {
           outputs->save(a);
@@ -142,14 +146,23 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
       res.checkpointTime = sim.time();
     };
 
+    RootLoadBalance balance;
     ProgressBar bar(scene.endTime, stderr, opt.progress && ranks.root());
     try {
       while (sim.time() < scene.endTime) {
         const double frameTime = frame * interval;
         const double next = interval > 0 ? std::min(scene.endTime, frameTime) : scene.endTime;
         sim.advanceTo(next, [&] {
-          gather();
-          ranks.onRoot([&] { outputs->step(view); });
+          if (scene.output.readsEveryStep()) {
+            gather(Simulation::GatherScope::Kinematics);
+            ranks.onRoot([&] {
+              // Not the gather: its time includes waiting for slower ranks.
+              const auto o0 = std::chrono::steady_clock::now();
+              outputs->step(view);
+              balance.addOutputSeconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count());
+            });
+          }
+          if (ranks.active()) balance.afterStep(ranks, sim);
           bar.update(sim.time(), sim.steps(), sim.particleSteps());
           if (ranks.active() && ranks.root() && opt.handleSignals) {
             char line[200];
@@ -172,6 +185,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
         // 3 * 0.1 > 0.3 in floating point: the last frame is due when the end time is within
         // rounding of it.
         if (interval > 0 && next >= frameTime - 1e-9 * interval) {
+          gatherWhole();
           ranks.onRoot([&] { outputs->frame(view, frame); });
           ++frame;
         }
@@ -188,6 +202,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
       checkpoint();
     }
     bar.finish();
+    if (res.status != RunStatus::Interrupted) gatherWhole();
     if (res.status != RunStatus::Interrupted)
       ranks.onRoot([&] {
         outputs->finish(view, res.status == RunStatus::Completed);

@@ -1,8 +1,32 @@
 #include "io/run/run_ranks.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace talus {
+
+void RootLoadBalance::afterStep(const RunRanks& ranks, Simulation& sim) {
+  const double compute = sim.phaseTimes().total() - sim.phaseTimes().halo;
+  if (compute0_ < 0) compute0_ = compute; // the first step: start the window here
+  work_ += double(sim.particleCount());
+  const int n = ranks.comm().size();
+  if (++steps_ < window_ || n < 2) return;
+  // Seconds per particle-step over all ranks (rank 0 may own none), rank 0's output seconds.
+  double sums[3] = {compute - compute0_, work_, ranks.root() ? output_ : 0.0};
+  ranks.comm().sum(sums, 3);
+  steps_ = 0, output_ = 0, work_ = 0, compute0_ = compute;
+  if (sums[0] <= 0 || sums[1] <= 0) return;
+  const double equivalent = sums[2] / (sums[0] / sums[1]) / window_; // particles per step
+  const double total = double(sim.globalParticleCount());
+  const double target = std::max(0.0, 1.0 / n - equivalent * (n - 1) / (n * total));
+  // Halfway there each window, so one slow step (a page fault, a plot) does not empty rank 0.
+  // Every rank takes rank 0's figure: ranges computed from different shares would lose particles.
+  const double previous = share_ < 0 ? 1.0 / n : share_;
+  share_ = ranks.comm().maxOf(ranks.root() ? 0.5 * (previous + target) : -1.0);
+  std::vector<double> shares(size_t(n), (1 - share_) / (n - 1));
+  shares[0] = share_;
+  sim.setRankShares(std::move(shares));
+}
 
 std::vector<RankFigures> rankFigures(const Simulation& sim) {
   const DomainDecomposition& dd = *sim.ranks();

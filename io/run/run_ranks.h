@@ -45,6 +45,27 @@ private:
   std::shared_ptr<Communicator> comm_;
 };
 
+/// Rank 0 gathers the particles and runs the per-step outputs while the other ranks wait for it in
+/// the next step's reductions, so it should own fewer particles. Every `window` steps it compares
+/// its output seconds with its compute seconds per particle-step: the outputs are worth E
+/// particles, and with N particles on R ranks rank 0 gets N/R - E (R-1)/R of them (none if that
+/// is negative) and every other rank N/R + E/R, which evens their step times. The ranges move,
+/// the results do not (they are the same at any ranges).
+class RootLoadBalance {
+public:
+  explicit RootLoadBalance(int window = 100) : window_(window) {}
+  /// Rank 0's seconds on outputs since the last step (ignored on the other ranks).
+  void addOutputSeconds(double s) { output_ += s; }
+  /// Collective, after every step on every rank.
+  void afterStep(const RunRanks& ranks, Simulation& sim);
+  /// The share rank 0 was last given (1/R until the first window).
+  double rootShare() const { return share_; }
+
+private:
+  int window_, steps_ = 0;
+  double output_ = 0, compute0_ = -1, work_ = 0, share_ = -1;
+};
+
 /// Collective: every rank's figures, on rank 0 (empty elsewhere).
 std::vector<RankFigures> rankFigures(const Simulation& sim);
 
