@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <initializer_list>
 
 namespace talus {
 
@@ -23,6 +24,29 @@ std::vector<std::pair<BlockCoord, uint64_t>> blockCounts(const SparseGrid& grid,
     for (const MaterialGroup* g : groups) n += g->blockStart[b + 1] - g->blockStart[b];
     out.push_back({grid.topology.coord(b), n});
   }
+  return out;
+}
+
+/// Per-block records for a gather: the block's coordinate, then the payload parts.
+void appendBlockRecord(std::vector<char>& out, const BlockCoord& c,
+                       std::initializer_list<std::pair<const void*, size_t>> parts) {
+  size_t at = out.size(), bytes = sizeof c;
+  for (const auto& part : parts) bytes += part.second;
+  out.resize(at + bytes);
+  std::memcpy(out.data() + at, &c, sizeof c);
+  at += sizeof c;
+  for (const auto& [data, n] : parts) std::memcpy(out.data() + at, data, n), at += n;
+}
+
+/// Gathered records of `rec` bytes each, as (coordinate, payload), in one process's block order.
+std::vector<std::pair<BlockCoord, const char*>> recordsInTreeOrder(const std::vector<char>& all, size_t rec) {
+  std::vector<std::pair<BlockCoord, const char*>> out;
+  for (size_t at = 0; at + rec <= all.size(); at += rec) {
+    BlockCoord c;
+    std::memcpy(&c, all.data() + at, sizeof c);
+    out.push_back({c, all.data() + at + sizeof c});
+  }
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return treeOrderLess(x.first, y.first); });
   return out;
 }
 } // namespace
@@ -80,26 +104,17 @@ void Simulation::reduceLoads(Real dt) {
   for (uint32_t b = 0; b < grid_.blockCount(); ++b) {
     const double* a = &grid_.contactImpulse[size_t(b) * K * 6];
     if (!counted[b] || std::all_of(a, a + 6 * K, [](double v) { return v == 0; })) continue;
-    mine.resize(mine.size() + rec);
-    std::memcpy(mine.data() + mine.size() - rec, &grid_.topology.coord(b), sizeof(BlockCoord));
-    std::memcpy(mine.data() + mine.size() - rec + sizeof(BlockCoord), a, 6 * K * sizeof(double));
+    appendBlockRecord(mine, grid_.topology.coord(b), {{a, 6 * K * sizeof(double)}});
   }
   std::vector<size_t> counts;
   const std::vector<char> all = ranks_->comm().gather(mine, counts);
   if (ranks_->rank() != 0) return; // only rank 0 reports loads (its outputs)
-  std::vector<const char*> blocks;
-  for (size_t at = 0; at < all.size(); at += rec) blocks.push_back(all.data() + at);
-  auto coordOf = [](const char* p) {
-    BlockCoord c;
-    std::memcpy(&c, p, sizeof c);
-    return c;
-  };
-  std::sort(blocks.begin(), blocks.end(), [&](const char* x, const char* y) { return treeOrderLess(coordOf(x), coordOf(y)); });
+  const auto blocks = recordsInTreeOrder(all, rec);
   loads_.assign(K, ColliderLoad{});
   const double invDt = 1.0 / double(dt);
   std::vector<double> a(6 * K);
-  for (const char* p : blocks) {
-    std::memcpy(a.data(), p + sizeof(BlockCoord), 6 * K * sizeof(double));
+  for (const auto& [c, p] : blocks) {
+    std::memcpy(a.data(), p, 6 * K * sizeof(double));
     for (size_t k = 0; k < K; ++k) {
       loads_[k].force += Vec3d(a[k * 6], a[k * 6 + 1], a[k * 6 + 2]) * invDt;
       loads_[k].moment += Vec3d(a[k * 6 + 3], a[k * 6 + 4], a[k * 6 + 5]) * invDt;
@@ -130,27 +145,17 @@ void Simulation::buildColumnsOnRanks() {
       flow |= volume[size_t(n)] > 0;
     }
     if (!flow) continue;
-    const size_t at = mine.size();
-    mine.resize(at + rec);
-    std::memcpy(mine.data() + at, &grid_.topology.coord(b), sizeof(BlockCoord));
-    std::memcpy(mine.data() + at + sizeof(BlockCoord), volume.data(), kBlockNodes * sizeof(float));
-    std::memcpy(mine.data() + at + sizeof(BlockCoord) + kBlockNodes * sizeof(float), mass.data(), kBlockNodes * sizeof(float));
+    appendBlockRecord(mine, grid_.topology.coord(b),
+                      {{volume.data(), kBlockNodes * sizeof(float)}, {mass.data(), kBlockNodes * sizeof(float)}});
   }
   std::vector<size_t> counts;
   const std::vector<char> all = ranks_->comm().allGather(mine, counts);
-  std::vector<const char*> blocks;
-  for (size_t at = 0; at < all.size(); at += rec) blocks.push_back(all.data() + at);
-  auto coordOf = [](const char* p) {
-    BlockCoord c;
-    std::memcpy(&c, p, sizeof c);
-    return c;
-  };
-  std::sort(blocks.begin(), blocks.end(), [&](const char* x, const char* y) { return treeOrderLess(coordOf(x), coordOf(y)); });
+  const auto blocks = recordsInTreeOrder(all, rec);
   columns_.clear();
-  for (const char* p : blocks) {
-    std::memcpy(volume.data(), p + sizeof(BlockCoord), kBlockNodes * sizeof(float));
-    std::memcpy(mass.data(), p + sizeof(BlockCoord) + kBlockNodes * sizeof(float), kBlockNodes * sizeof(float));
-    columns_.addBlock(coordOf(p), volume.data(), mass.data());
+  for (const auto& [c, p] : blocks) {
+    std::memcpy(volume.data(), p, kBlockNodes * sizeof(float));
+    std::memcpy(mass.data(), p + kBlockNodes * sizeof(float), kBlockNodes * sizeof(float));
+    columns_.addBlock(c, volume.data(), mass.data());
   }
   columns_.finish();
 }
