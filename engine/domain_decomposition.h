@@ -71,6 +71,11 @@ public:
   const std::vector<ParticleOrder>& order() const { return order_; }
   /// Keeps only the particles of this rank's blocks (every rank holding every particle).
   void keepOwn(const std::vector<MaterialGroup*>& groups, Real dx);
+  /// Collective, when each rank seeded a part of the scene: moves every particle to the rank
+  /// owning its block and orders each rank's particles by `index` (per MaterialGroup::index(),
+  /// each particle's index in one process's arrays), so they are in one process's order.
+  void scatterSeeded(const std::vector<MaterialGroup*>& groups, Real dx,
+                     const std::vector<std::vector<uint64_t>>& index);
 
   /// Collective: (max / target - 1) of the ranks' particle counts; the target is the mean, or
   /// the rank's share of the total.

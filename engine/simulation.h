@@ -85,9 +85,13 @@ public:
 
   /// Collective over comm's ranks: from here on this process holds and steps only the particles
   /// of its range of blocks (engine/domain_decomposition.h). Every rank must have built the same
-  /// scene (all particles); results are bit-identical to one process's at any rank count.
+  /// scene (all particles, or its part with seedIndex); results are bit-identical to one
+  /// process's at any rank count.
   /// @param imbalance  rebalance when a rank holds more than (1 + imbalance) x the mean particles
-  void distribute(std::shared_ptr<Communicator> comm, double imbalance = 0.1);
+  /// @param seedIndex  when each rank built only its part of the particles: per group index
+  ///                   (MaterialGroup::index()), each particle's index in one process's arrays
+  void distribute(std::shared_ptr<Communicator> comm, double imbalance = 0.1,
+                  const std::vector<std::vector<uint64_t>>* seedIndex = nullptr);
   /// The ranks, or null for one process.
   const DomainDecomposition* ranks() const { return ranks_.get(); }
   /// Collective, same values on every rank: the fraction of the particles each rank should own

@@ -2,12 +2,14 @@
 // the reduction of collider loads (engine/domain_decomposition.h, engine/halo_exchange.h).
 #include "engine/simulation.h"
 
+#include "engine/bspline.h"
 #include "engine/particle_binning.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <initializer_list>
+#include <map>
 
 namespace talus {
 
@@ -51,13 +53,37 @@ std::vector<std::pair<BlockCoord, const char*>> recordsInTreeOrder(const std::ve
 }
 } // namespace
 
-void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance) {
+void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance,
+                            const std::vector<std::vector<uint64_t>>* seedIndex) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
-  // Every rank holds every particle here: the same binning everywhere gives the same ranges.
-  binParticles(groupPtrs_, grid_, reorder_, &periodic_);
-  ranks_->balance(blockCounts(grid_, groupPtrs_));
-  ranks_->keepOwn(groupPtrs_, grid_.dx);
+  if (!seedIndex) {
+    // Every rank holds every particle here: the same binning everywhere gives the same ranges.
+    binParticles(groupPtrs_, grid_, reorder_, &periodic_);
+    ranks_->balance(blockCounts(grid_, groupPtrs_));
+    ranks_->keepOwn(groupPtrs_, grid_.dx);
+    return;
+  }
+  // Each rank holds a part: the ranges come from every rank's block counts added up.
+  const Real invDx = Real(1) / grid_.dx;
+  auto less = [](const BlockCoord& a, const BlockCoord& b) { return treeOrderLess(a, b); };
+  std::map<BlockCoord, uint64_t, decltype(less)> counts(less);
+  for (const MaterialGroup* g : groupPtrs_)
+    for (const Vec3& x : g->particles.x) ++counts[owningBlock(x, invDx)];
+  std::vector<std::pair<BlockCoord, uint64_t>> mine(counts.begin(), counts.end());
+  std::vector<char> bytes(mine.size() * sizeof(mine[0]));
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+  std::vector<size_t> sizes;
+  const std::vector<char> all = ranks_->comm().allGather(bytes, sizes);
+  counts.clear();
+  for (size_t at = 0; at + sizeof(mine[0]) <= all.size(); at += sizeof(mine[0])) {
+    std::pair<BlockCoord, uint64_t> b;
+    std::memcpy(static_cast<void*>(&b), all.data() + at, sizeof b);
+    counts[b.first] += b.second;
+  }
+  ranks_->balance({counts.begin(), counts.end()});
+  ranks_->scatterSeeded(groupPtrs_, grid_.dx, *seedIndex);
+  maxSpeed_ = ranks_->comm().maxOf(maxSpeed_); // the initial velocities' largest, as one process's
 }
 
 size_t Simulation::globalParticleCount() const {

@@ -26,9 +26,9 @@ namespace {
 // be written (disk full, quota, read-only or removed folder), 128 + signal when interrupted.
 constexpr int kExitWriteFailure = 4;
 
-SceneSetup load(const std::string& scene, const std::vector<std::string>& sets) {
-  if (scene.empty()) return loadSceneString(defaultSceneText(), "<default scene>", sets);
-  return loadSceneFile(scene, sets);
+SceneSetup load(const std::string& scene, const std::vector<std::string>& sets, const SeedSlice& part = {}) {
+  if (scene.empty()) return loadSceneString(defaultSceneText(), "<default scene>", sets, part);
+  return loadSceneFile(scene, sets, part);
 }
 
 /// MPI ranks when started by mpirun/srun (null otherwise); only rank 0 prints.
@@ -40,7 +40,10 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   quiet = quiet || !isRoot();
   if (!resume.empty() && !out.empty() && out != resume)
     throw InputError("--out", 0, "", "--resume continues in its own directory; do not give a different --out");
-  SceneSetup setup = load(scene, sets);
+  // Under mpirun each rank seeds its part (a resumed run reads its particles from the checkpoint).
+  SeedSlice part;
+  if (gRanks && resume.empty()) part.part = gRanks->rank(), part.parts = gRanks->size();
+  SceneSetup setup = load(scene, sets, part);
   if (!quiet)
     for (const auto& n : setup.notes) std::fprintf(stderr, "talus: %s\n", n.c_str());
   RunOptions opt;
@@ -53,8 +56,7 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
     opt.ranks = gRanks;
     opt.viewScene = [&] { return load(scene, sets); };
   }
-  size_t n = 0;
-  for (const auto& g : setup.groups) n += g->size();
+  const size_t n = setup.seededParticles();
   if (!quiet)
     std::fprintf(stderr, "talus: %s: %zu particles, dx %g m, end time %g s\n", setup.file.c_str(), n,
                  setup.settings.dx, setup.endTime);

@@ -131,7 +131,9 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
       ++frame;
     }
     if (ranks.active()) {
-      sim.distribute(opt.ranks);
+      // Each rank seeded its part (unless resumed: then every rank read every particle).
+      const bool seededInParts = scene.seedSlice.active() && !opt.resume;
+      sim.distribute(opt.ranks, 0.1, seededInParts ? &scene.seedSlice.index : nullptr);
       gatherWhole();
     }
     auto checkpoint = [&] {

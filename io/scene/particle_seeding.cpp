@@ -83,10 +83,14 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
     throw InputError("", "would seed at least " + std::to_string(columns * spec.particlesPerCell) +
                              " particles, more than max_particles = " + std::to_string(spec.maxParticles) +
                              " (is dx too small?)");
-  // Per x-row of columns: positions and velocities, concatenated in row order afterwards.
+  // Per x-row of columns: positions and velocities, concatenated in row order afterwards. Under
+  // MPI ranks every row is counted and this rank's rows kept.
   std::vector<std::vector<Vec3>> xs(rows), vs(rows);
+  std::vector<size_t> counts(rows, 0);
+  SeedSlice* slice = spec.slice && spec.slice->active() ? spec.slice : nullptr;
   tbb::parallel_for(size_t(0), rows, [&](size_t r) {
     const int64_t i = c0[0] + int64_t(r);
+    const bool keep = !slice || slice->keeps(i);
     for (int64_t j = c0[1]; j < c1[1]; ++j) {
       double zlo, zhi;
       if (!columnRange(double(i) * dx, double(j) * dx, double(i + 1) * dx, double(j + 1) * dx, zlo, zhi)) continue;
@@ -97,15 +101,27 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
           const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
           if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
           if (insideSolid(spec, x)) continue;
+          ++counts[r];
+          if (!keep) continue;
           xs[r].push_back(x.cast<Real>());
           vs[r].push_back(velocity(x).cast<Real>());
         }
     }
   });
   ParticleSet& P = group.particles;
-  const size_t before = P.size();
-  size_t total = before;
-  for (const auto& x : xs) total += x.size();
+  size_t total = P.size(), all = 0;
+  for (size_t r = 0; r < rows; ++r) total += xs[r].size(), all += counts[r];
+  if (slice) {
+    // One process's index of every kept particle: its group's earlier particles, then the rows.
+    const size_t g = size_t(group.index());
+    if (slice->seeded.size() <= g) slice->seeded.resize(g + 1, 0), slice->index.resize(g + 1);
+    uint64_t at = slice->seeded[g];
+    for (size_t r = 0; r < rows; ++r) {
+      for (size_t k = 0; k < xs[r].size(); ++k) slice->index[g].push_back(at + k);
+      at += counts[r];
+    }
+    slice->seeded[g] = at;
+  }
   P.x.reserve(total), P.v.reserve(total), P.C.reserve(total), P.tau.reserve(total), P.mass.reserve(total);
   for (size_t r = 0; r < rows; ++r) {
     P.x.insert(P.x.end(), xs[r].begin(), xs[r].end());
@@ -115,7 +131,7 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
   P.tau.resize(total, Sym3{});
   P.mass.resize(total, mass);
   group.resizeState(P.size());
-  return P.size() - before;
+  return all;
 }
 
 } // namespace talus

@@ -9,6 +9,22 @@
 
 namespace talus {
 
+/// Seeding split over MPI ranks. Rank `part` of `parts` keeps the particles of its x-rows of cells
+/// (8 rows each, round robin, the same rows for every body, so a water column's hydrostatic start
+/// sees all of it); every rank still visits every row, so counts, reports and errors are the same
+/// on each. Per group (MaterialGroup::index()), `index` gets each kept particle's index in one
+/// process's arrays, for Simulation::distribute.
+struct SeedSlice {
+  int part = 0, parts = 1;
+  std::vector<uint64_t> seeded;             ///< one process's particle count so far, per group
+  std::vector<std::vector<uint64_t>> index; ///< per group: the kept particles' indices
+  bool active() const { return parts > 1; }
+  bool keeps(int64_t row) const {
+    const int64_t chunk = row >= 0 ? row / 8 : -((-row + 7) / 8);
+    return int((chunk % parts + parts) % parts) == part;
+  }
+};
+
 struct SeedSpec {
   double dx = 0.1;
   int particlesPerCell = 8;
@@ -17,6 +33,7 @@ struct SeedSpec {
   const Sdf* terrain = nullptr; ///< samples inside the ground are skipped
   std::vector<const Sdf*> solids; ///< and inside these (structures)
   double maxParticles = 2e9;           ///< refuse (InputError) to seed more than this
+  SeedSlice* slice = nullptr;          ///< under MPI ranks: keep this rank's rows only
 };
 
 /// Sample offsets inside a unit cell: a lattice when particles_per_cell is a cube (1, 8, 27...),
@@ -35,6 +52,7 @@ size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(con
 /// column holds none of it. May be conservative: `inside` decides each sample.
 using ColumnRange = std::function<bool(double x0, double y0, double x1, double y1, double& zlo, double& zhi)>;
 
+/// Both return one process's count (all rows) even when spec.slice keeps fewer.
 /// seedRegion for bodies lying on terrain: the same samples, masses and rules, but only the
 /// cells of each column that overlap its `columnRange` are visited, so a thin layer over a
 /// kilometre of relief costs what its volume costs. Columns are seeded in parallel (`inside`,

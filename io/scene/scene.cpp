@@ -224,6 +224,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   spec.particlesPerCell = s.particlesPerCell;
   spec.seed = seed;
   spec.jitter = jitter;
+  spec.slice = &s.seedSlice;
   spec.terrain = s.settings.terrain.get();
   for (const auto& st : s.settings.structures) spec.solids.push_back(st.geometry.get());
   SeedSpec terrainSpec = spec;
@@ -290,9 +291,10 @@ void readOutput(const ConfigTable& root, SceneSetup& s) {
 
 } // namespace
 
-SceneSetup buildScene(const ConfigTable& root) {
+SceneSetup buildScene(const ConfigTable& root, const SeedSlice& slice) {
   SceneSetup s;
   s.file = root.file();
+  s.seedSlice.part = slice.part, s.seedSlice.parts = slice.parts;
   readSimulation(root, s);
   const ConfigTable* ter = root.table("terrain");
   std::optional<DemTerrainInput> dem;
@@ -310,6 +312,15 @@ SceneSetup buildScene(const ConfigTable& root) {
                                     s.output.paths.empty() ? std::vector<Eigen::Vector2d>{} : s.output.paths[0].points);
   root.checkAllUsed();
   return s;
+}
+
+size_t SceneSetup::seededParticles() const {
+  size_t n = 0;
+  if (seedSlice.active())
+    for (uint64_t c : seedSlice.seeded) n += c;
+  else
+    for (const auto& g : groups) n += g->size();
+  return n;
 }
 
 RunContext SceneSetup::runContext() const {
@@ -343,27 +354,28 @@ std::string sceneHash(const std::string& text, const std::vector<std::string>& o
 }
 
 /// Overrides first, so `--set avaframe.release_thickness=2` reaches the AvaFrame folder's bodies.
-SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides) {
+SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides, const SeedSlice& slice) {
   for (const auto& o : overrides) applyOverride(root, o);
   std::vector<std::string> notes;
   expandAvaFrame(root, notes);
-  SceneSetup s = buildScene(root);
+  SceneSetup s = buildScene(root, slice);
   s.notes.insert(s.notes.begin(), notes.begin(), notes.end());
   return s;
 }
 } // namespace
 
-SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
+SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides,
+                         const SeedSlice& slice) {
   std::string text;
   auto root = readTomlFile(path, &text);
-  SceneSetup s = build(*root, overrides);
+  SceneSetup s = build(*root, overrides, slice);
   s.hash = sceneHash(text, overrides);
   return s;
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
-                           const std::vector<std::string>& overrides) {
-  SceneSetup s = build(*readTomlString(text, name), overrides);
+                           const std::vector<std::string>& overrides, const SeedSlice& slice) {
+  SceneSetup s = build(*readTomlString(text, name), overrides, slice);
   s.hash = sceneHash(text, overrides);
   return s;
 }

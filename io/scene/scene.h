@@ -35,6 +35,11 @@ struct SceneSetup {
   std::string hash;
   /// What the reader did that a user may want to know (terrain built or reused, cells filled).
   std::vector<std::string> notes;
+  /// Under MPI ranks, the rank's part of the seeding and one process's index of each particle
+  /// (io/scene/particle_seeding.h); parts == 1 otherwise.
+  SeedSlice seedSlice;
+  /// Particles one process seeds (the groups hold fewer when the seeding is split over ranks).
+  size_t seededParticles() const;
 
   /// What the outputs need to know of this scene.
   RunContext runContext() const;
@@ -42,12 +47,14 @@ struct SceneSetup {
 
 /// Reads every section, creates and seeds the material groups, and rejects unknown keys.
 /// Throws InputError naming file, line and key.
-SceneSetup buildScene(const ConfigTable& root);
+SceneSetup buildScene(const ConfigTable& root, const SeedSlice& slice = {});
 
 /// Convenience: parse a file (or text) with `--set` overrides and build it.
-SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides = {});
+/// `slice` (part, parts): seed only this rank's part (see SeedSlice).
+SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides = {},
+                         const SeedSlice& slice = {});
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
-                           const std::vector<std::string>& overrides = {});
+                           const std::vector<std::string>& overrides = {}, const SeedSlice& slice = {});
 
 /// The scene `talus run` uses when no file is given (data/scenes/default.toml, compiled in).
 const std::string& defaultSceneText();

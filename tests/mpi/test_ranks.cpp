@@ -144,7 +144,75 @@ min = [0.2, 0.1, 0.1]
 max = [1.4, 0.7, 0.35]
 )";
 
+// Water at rest in two stacked bodies (hydrostatic start: each column's top is seen over both)
+// beside a granular heap: two groups, two bodies in one of them.
+const char* kTwoGroups = R"(
+[simulation]
+dx = 0.05
+particles_per_cell = 8
+end_time = 1
+[domain]
+min = [0, 0, 0]
+max = [2.4, 0.4, 0.8]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 20
+[[materials]]
+name = "sand"
+model = "drucker_prager"
+density = 1600
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+friction_angle = 30
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.9, 0.4, 0.2]
+[[bodies]]
+material = "sand"
+shape = "box"
+min = [1.4, 0, 0]
+max = [2.2, 0.4, 0.3]
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0.2]
+max = [0.9, 0.4, 0.45]
+)";
+
+/// Each rank seeds its part of the scene (SeedSlice), then distribute() puts the particles in
+/// one process's order on their owners.
+RankRun runSeededOnRanks(const std::string& toml, const std::vector<std::string>& overrides, int steps) {
+  SeedSlice part;
+  part.part = world->rank(), part.parts = world->size();
+  SceneSetup s = loadSceneString(toml, "test.toml", overrides, part);
+  size_t held = 0;
+  for (const auto& g : s.groups) held += g->size();
+  // Every rank seeds only its rows: no rank holds them all (at 2 ranks and more).
+  EXPECT_LT(world->maxOf(double(held)), double(s.seededParticles()));
+  EXPECT_EQ(world->sumOf(held), s.seededParticles()) << "every particle is seeded on exactly one rank";
+  RankRun r;
+  r.sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
+  r.sim->distribute(world, 0.1, &s.seedSlice.index);
+  for (int i = 0; i < steps; ++i) r.sim->step();
+  r.particles = gathered(*r.sim);
+  return r;
+}
+
 } // namespace
+
+TEST(Ranks, EachRankSeedingItsPartGivesOneProcesssParticles) {
+  for (const std::string& toml : {std::string(kTwoGroups), kCollapse}) {
+    RankRun r = runSeededOnRanks(toml, {}, 60);
+    expectInvariant(r, toml, {}, 60);
+  }
+  RankRun r = runSeededOnRanks(defaultSceneText(), {"simulation.end_time=0.3"}, 40);
+  expectInvariant(r, defaultSceneText(), {"simulation.end_time=0.3"}, 40);
+}
 
 TEST(Ranks, AnElasticBlockSlidingThroughThreeRanksRangesIsBitIdentical) {
   // No rebalancing: the ranges stay where the block started, so it slides out of rank 0's
