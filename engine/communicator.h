@@ -30,6 +30,9 @@ public:
   uint64_t bytesSent = 0;
   /// Wall seconds this rank has spent inside the calls above (waiting included).
   double seconds = 0;
+  /// Largest single MPI message: gathers beyond it (rank 0's view of 17.5 M particles is
+  /// 2.4 GB, past MPI's int counts) travel in pieces. Smaller in tests.
+  size_t maxMessageBytes = size_t(1) << 30;
 };
 
 /// One process: reductions are identities, gathers return the caller's own bytes.

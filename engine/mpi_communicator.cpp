@@ -1,5 +1,6 @@
 #include "engine/mpi_communicator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cstdlib>
@@ -77,20 +78,30 @@ public:
     return out;
   }
   std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
+    // Point to point in pieces of at most maxMessageBytes: the total may pass 2 GiB (int counts).
     Stopwatch t(seconds);
-    const int n = checkedCount(mine.size());
-    std::vector<int> c(static_cast<size_t>(size_), 0), displ(static_cast<size_t>(size_), 0);
-    MPI_Gather(&n, 1, MPI_INT, c.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    size_t total = 0;
+    uint64_t n = mine.size();
+    std::vector<uint64_t> c(static_cast<size_t>(size_), 0);
+    MPI_Gather(&n, 1, MPI_UINT64_T, c.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    const size_t piece = std::max<size_t>(1, std::min(maxMessageBytes, size_t(INT_MAX)));
     counts.assign(static_cast<size_t>(size_), 0);
-    for (int r = 0; r < size_; ++r) {
-      displ[size_t(r)] = checkedCount(total);
-      counts[size_t(r)] = size_t(c[size_t(r)]);
-      total += counts[size_t(r)];
+    if (rank_ != 0) {
+      for (size_t at = 0; at < mine.size(); at += piece)
+        MPI_Send(mine.data() + at, int(std::min(piece, mine.size() - at)), MPI_BYTE, 0, 9, MPI_COMM_WORLD);
+      bytesSent += mine.size();
+      return {};
     }
-    std::vector<char> out(rank_ == 0 ? total : 0);
-    MPI_Gatherv(mine.data(), n, MPI_BYTE, out.data(), c.data(), displ.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
-    if (rank_ != 0) bytesSent += mine.size();
+    size_t total = 0;
+    for (int r = 0; r < size_; ++r) total += (counts[size_t(r)] = size_t(c[size_t(r)]));
+    std::vector<char> out(total);
+    std::copy(mine.begin(), mine.end(), out.begin());
+    size_t displ = mine.size();
+    for (int r = 1; r < size_; ++r) {
+      for (size_t at = 0; at < counts[size_t(r)]; at += piece)
+        MPI_Recv(out.data() + displ + at, int(std::min(piece, counts[size_t(r)] - at)), MPI_BYTE, r, 9, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+      displ += counts[size_t(r)];
+    }
     return out;
   }
   std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) override {

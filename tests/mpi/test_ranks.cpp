@@ -214,6 +214,29 @@ TEST(Ranks, EachRankSeedingItsPartGivesOneProcesssParticles) {
   expectInvariant(r, defaultSceneText(), {"simulation.end_time=0.3"}, 40);
 }
 
+TEST(Ranks, AGatherLargerThanOneMessageArrivesWholeInRankOrder) {
+  // Rank 0's view of a large run passes MPI's 2 GiB int counts; here the pieces are 1000 bytes.
+  const size_t keep = world->maxMessageBytes;
+  world->maxMessageBytes = 1000;
+  std::vector<char> mine(size_t(10007 + 3 * world->rank()));
+  for (size_t i = 0; i < mine.size(); ++i) mine[i] = char((i * 7 + size_t(world->rank())) % 251);
+  std::vector<size_t> counts;
+  const std::vector<char> all = world->gather(mine, counts);
+  world->maxMessageBytes = keep;
+  if (world->rank() != 0) {
+    EXPECT_TRUE(all.empty());
+    return;
+  }
+  ASSERT_EQ(counts.size(), size_t(world->size()));
+  size_t at = 0;
+  for (int r = 0; r < world->size(); ++r) {
+    ASSERT_EQ(counts[size_t(r)], size_t(10007 + 3 * r));
+    for (size_t i = 0; i < counts[size_t(r)]; ++i) ASSERT_EQ(all[at + i], char((i * 7 + size_t(r)) % 251)) << r << " " << i;
+    at += counts[size_t(r)];
+  }
+  EXPECT_EQ(at, all.size());
+}
+
 TEST(Ranks, AnElasticBlockSlidingThroughThreeRanksRangesIsBitIdentical) {
   // No rebalancing: the ranges stay where the block started, so it slides out of rank 0's
   // range through the others' (4 ranks: three boundaries crossed).
