@@ -3,6 +3,8 @@
 #include "engine/padded_block.h"
 #include "engine/transfer_p2g.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
@@ -34,19 +36,33 @@ void HaloExchange::exchange(const std::vector<MaterialGroup*>& groups, SparseGri
   const size_t nBlocks = grid.blockCount();
   channels_ = std::max(grid.extraChannels, 0);
 
-  // 1. Every rank's owning blocks (ranks hold disjoint block ranges, so a block has one rank).
-  std::vector<char> mine(grid.owning.size() * sizeof(BlockCoord));
-  for (size_t i = 0; i < grid.owning.size(); ++i)
-    std::memcpy(mine.data() + i * sizeof(BlockCoord), &grid.topology.coord(grid.owning[i]), sizeof(BlockCoord));
-  std::vector<size_t> counts;
-  const std::vector<char> all = comm.allGather(mine, counts);
+  // 1. The owning blocks within one block of ours, with their ranks. Ranges say which rank owns
+  // a coordinate (dd.owner), but only that rank knows whether the block holds particles: each
+  // rank tells its owning blocks to the ranks owning one of their 26 neighbours. That is every
+  // block holders() asks about (X - {0,1}^3 for X within +1 of our blocks), and no more.
+  std::vector<std::vector<char>> tell(static_cast<size_t>(n));
+  for (uint32_t b : grid.owning) {
+    const BlockCoord& c = grid.topology.coord(b);
+    std::array<int, 26> told{};
+    int k = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int r = dd.owner({c.x + dx, c.y + dy, c.z + dz});
+          if (r == me || std::find(told.begin(), told.begin() + k, r) != told.begin() + k) continue;
+          told[size_t(k++)] = r;
+          auto& t = tell[size_t(r)];
+          t.insert(t.end(), reinterpret_cast<const char*>(&c), reinterpret_cast<const char*>(&c) + sizeof(c));
+        }
+  }
+  const std::vector<std::vector<char>> heard = comm.exchange(tell);
   std::unordered_map<uint64_t, int> rankOf;
-  rankOf.reserve(all.size() / sizeof(BlockCoord));
-  size_t at = 0;
+  rankOf.reserve(grid.owning.size() * 2);
+  for (uint32_t b : grid.owning) rankOf.emplace(blockKey(grid.topology.coord(b)), me);
   for (int r = 0; r < n; ++r)
-    for (size_t i = 0; i < counts[size_t(r)] / sizeof(BlockCoord); ++i, at += sizeof(BlockCoord)) {
+    for (size_t at = 0; at + sizeof(BlockCoord) <= heard[size_t(r)].size(); at += sizeof(BlockCoord)) {
       BlockCoord c;
-      std::memcpy(&c, all.data() + at, sizeof(c));
+      std::memcpy(&c, heard[size_t(r)].data() + at, sizeof(c));
       rankOf.emplace(blockKey(c), r);
     }
   // The ranks holding block X: those owning one of X - {0,1}^3.

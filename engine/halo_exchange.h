@@ -27,8 +27,9 @@ struct RemoteRows {
 
 class HaloExchange {
 public:
-  /// Collective, after binning, before particlesToGrid: learns every rank's owning blocks,
-  /// scatters this rank's blocks that reach other ranks' blocks, and exchanges those rows.
+  /// Collective, after binning, before particlesToGrid: learns the owning blocks next to this
+  /// rank's from their ranks (not the whole grid's), scatters this rank's blocks that reach other
+  /// ranks' blocks, and exchanges those rows.
   void exchange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt, DomainDecomposition& dd);
 
   /// The padded P2G buffer of owning block b scattered ahead, or null.

@@ -5,7 +5,6 @@ Inputs measured on the 2-core VM (commands in docs/scaling.md):
   - compute rate per core on the terrain case (talus bench --case terrain --threads 1)
   - halo bytes per rank per step and boundary blocks per rank on the terrain case at dx 2 m
     (mpirun -np 4 talus bench --ranks --case terrain --scale 8 --threads 1; stderr per rank)
-  - particles per owning block (same run) for the size of the owning-block all-gather
 Network figures are typical, not measured here: 10 Gb/s Ethernet (TCP) and 100 Gb/s InfiniBand.
 """
 import math
@@ -14,9 +13,8 @@ RATE_PER_CORE = 3.6e6          # particle-steps/s, terrain case, 1 thread (measu
 PARALLEL_EFF = 0.9             # threads within a rank (measured 79-98 % at 2 threads)
 HALO_BYTES_REF = 310e3         # mean halo bytes sent per rank per step at 4 ranks, dx 2 m
 PARTICLES_REF = 119e3          # particles per rank in that run
-PARTICLES_PER_BLOCK = 680      # particles per owning block in that run (476 254 / 699)
 COLLECTIVES = 16               # latency-bound collectives per step (dt 4, speed, finite, count,
-                               # imbalance 2, loads, 2 all-to-all counts, owning all-gather,
+                               # imbalance 2, loads, 2 all-to-all counts, neighbours' blocks,
                                # run: root flag, 2 signal agreements, minima)
 NEIGHBOURS = 6                 # halo messages per rank per step
 RECORD_BYTES = 28              # bytes per particle gathered to rank 0 for per-step outputs
@@ -32,8 +30,8 @@ def step(n_total, ranks, threads, alpha, beta):
     # A rank's share of a thin flow is a patch: its boundary grows as the square root of its area.
     halo = HALO_BYTES_REF * math.sqrt(n / PARTICLES_REF)
     halo_t = NEIGHBOURS * alpha + halo / beta
-    blocks = n_total / PARTICLES_PER_BLOCK
-    gather_t = alpha * math.log2(ranks) + blocks * 12 * (ranks - 1) / ranks / beta
+    # The owning blocks next to a rank's (12 bytes each), told by their ranks: latency only.
+    gather_t = alpha * math.log2(ranks)
     coll_t = COLLECTIVES * alpha * math.log2(ranks)
     comm = halo_t + gather_t + coll_t
     return compute, comm, halo
