@@ -87,10 +87,10 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
   // MPI ranks every row is counted and this rank's rows kept.
   std::vector<std::vector<Vec3>> xs(rows), vs(rows);
   std::vector<size_t> counts(rows, 0);
+  std::vector<std::vector<uint32_t>> ordinal(rows); // kept particles' places in their row
   SeedSlice* slice = spec.slice && spec.slice->active() ? spec.slice : nullptr;
   tbb::parallel_for(size_t(0), rows, [&](size_t r) {
     const int64_t i = c0[0] + int64_t(r);
-    const bool keep = !slice || slice->keeps(i);
     for (int64_t j = c0[1]; j < c1[1]; ++j) {
       double zlo, zhi;
       if (!columnRange(double(i) * dx, double(j) * dx, double(i + 1) * dx, double(j + 1) * dx, zlo, zhi)) continue;
@@ -102,7 +102,12 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
           if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
           if (insideSolid(spec, x)) continue;
           ++counts[r];
-          if (!keep) continue;
+          if (slice) {
+            // By the x column of the stored (float) position, the column the hydrostatic start
+            // keys it by: a sample within rounding of a cell edge goes with that column.
+            if (!slice->keeps(int64_t(std::floor(double(Real(x.x())) / dx)))) continue;
+            ordinal[r].push_back(uint32_t(counts[r] - 1));
+          }
           xs[r].push_back(x.cast<Real>());
           vs[r].push_back(velocity(x).cast<Real>());
         }
@@ -117,7 +122,7 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
     if (slice->seeded.size() <= g) slice->seeded.resize(g + 1, 0), slice->index.resize(g + 1);
     uint64_t at = slice->seeded[g];
     for (size_t r = 0; r < rows; ++r) {
-      for (size_t k = 0; k < xs[r].size(); ++k) slice->index[g].push_back(at + k);
+      for (uint32_t k : ordinal[r]) slice->index[g].push_back(at + k);
       at += counts[r];
     }
     slice->seeded[g] = at;

@@ -9,10 +9,10 @@
 
 namespace talus {
 
-/// Seeding split over MPI ranks. Rank `part` of `parts` keeps the particles of its x-rows of cells
-/// (8 rows each, round robin, the same rows for every body, so a water column's hydrostatic start
-/// sees all of it); every rank still visits every row, so counts, reports and errors are the same
-/// on each. Per group (MaterialGroup::index()), `index` gets each kept particle's index in one
+/// Seeding split over MPI ranks. Rank `part` of `parts` keeps the particles whose positions lie in
+/// its x-columns of cells (8 at a time, round robin, the same for every body, so a water column's
+/// hydrostatic start sees all of it); every rank still visits every row, so counts, reports and
+/// errors are the same on each. Per group (MaterialGroup::index()), `index` gets each kept particle's index in one
 /// process's arrays, for Simulation::distribute.
 struct SeedSlice {
   int part = 0, parts = 1;

@@ -210,6 +210,10 @@ TEST(Ranks, EachRankSeedingItsPartGivesOneProcesssParticles) {
     RankRun r = runSeededOnRanks(toml, {}, 60);
     expectInvariant(r, toml, {}, 60);
   }
+  // Stratified random samples (not a lattice), which may fall anywhere in their cells.
+  const std::vector<std::string> random{"simulation.particles_per_cell=5"};
+  RankRun w = runSeededOnRanks(kTwoGroups, random, 60);
+  expectInvariant(w, kTwoGroups, random, 60);
   RankRun r = runSeededOnRanks(defaultSceneText(), {"simulation.end_time=0.3"}, 40);
   expectInvariant(r, defaultSceneText(), {"simulation.end_time=0.3"}, 40);
 }
