@@ -29,6 +29,18 @@ std::vector<std::pair<BlockCoord, uint64_t>> blockCounts(const SparseGrid& grid,
   return out;
 }
 
+/// Every rank's (block, particle count) pairs, concatenated in rank order, on every rank.
+std::vector<std::pair<BlockCoord, uint64_t>> allBlockCounts(Communicator& comm,
+                                                            const std::vector<std::pair<BlockCoord, uint64_t>>& mine) {
+  std::vector<char> bytes(mine.size() * sizeof(mine[0]));
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+  std::vector<size_t> sizes;
+  const std::vector<char> all = comm.allGather(bytes, sizes);
+  std::vector<std::pair<BlockCoord, uint64_t>> out(all.size() / sizeof(mine[0]));
+  if (!out.empty()) std::memcpy(static_cast<void*>(out.data()), all.data(), all.size());
+  return out;
+}
+
 /// Per-block records for a gather: the block's coordinate, then the payload parts.
 void appendBlockRecord(std::vector<char>& out, const BlockCoord& c,
                        std::initializer_list<std::pair<const void*, size_t>> parts) {
@@ -70,17 +82,9 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
   std::map<BlockCoord, uint64_t, decltype(less)> counts(less);
   for (const MaterialGroup* g : groupPtrs_)
     for (const Vec3& x : g->particles.x) ++counts[owningBlock(x, invDx)];
-  std::vector<std::pair<BlockCoord, uint64_t>> mine(counts.begin(), counts.end());
-  std::vector<char> bytes(mine.size() * sizeof(mine[0]));
-  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
-  std::vector<size_t> sizes;
-  const std::vector<char> all = ranks_->comm().allGather(bytes, sizes);
+  const auto all = allBlockCounts(ranks_->comm(), {counts.begin(), counts.end()});
   counts.clear();
-  for (size_t at = 0; at + sizeof(mine[0]) <= all.size(); at += sizeof(mine[0])) {
-    std::pair<BlockCoord, uint64_t> b;
-    std::memcpy(static_cast<void*>(&b), all.data() + at, sizeof b);
-    counts[b.first] += b.second;
-  }
+  for (const auto& [c, count] : all) counts[c] += count; // a block seeded on several ranks
   ranks_->balance({counts.begin(), counts.end()});
   ranks_->scatterSeeded(groupPtrs_, grid_.dx, *seedIndex);
   maxSpeed_ = ranks_->comm().maxOf(maxSpeed_); // the initial velocities' largest, as one process's
@@ -100,14 +104,7 @@ void Simulation::binAndBalance() {
   t0 = std::chrono::steady_clock::now();
   if (ranks_->imbalance(particleCount()) > ranks_->threshold()) {
     // New ranges from every rank's blocks; the order of the particles across ranks is unchanged.
-    const auto mine = blockCounts(grid_, groupPtrs_);
-    std::vector<char> bytes(mine.size() * sizeof(mine[0]));
-    if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
-    std::vector<size_t> counts;
-    const std::vector<char> all = ranks_->comm().allGather(bytes, counts);
-    std::vector<std::pair<BlockCoord, uint64_t>> blocks(all.size() / sizeof(mine[0]));
-    if (!blocks.empty()) std::memcpy(static_cast<void*>(blocks.data()), all.data(), all.size());
-    ranks_->balance(std::move(blocks));
+    ranks_->balance(allBlockCounts(ranks_->comm(), blockCounts(grid_, groupPtrs_)));
     ranks_->migrate(groupPtrs_, grid_.dx);
     ++ranks_->rebalances;
     times_.halo += secondsSince(t0);
