@@ -64,19 +64,33 @@ struct CamClayModel {
   static float stateScalar(const State& s, size_t i) { return i == 0 ? float(s.yielded) : s.volumetricPlasticStrain; }
 
   /// Closest point (px, py) on the ellipse (x/A)^2 + (y/B)^2 = 1 to (x, y), x, y >= 0, outside.
-  static void closestOnEllipse(double x, double y, double A, double B, double& px, double& py) {
+  /// t is the root's parameter (below): on entry a guess (the last projection's, or 0 for
+  /// none), on exit the root.
+  static void closestOnEllipse(double x, double y, double A, double B, double& px, double& py, double& t) {
     // F(t) = (A x / (t + A^2))^2 + (B y / (t + B^2))^2 - 1 decreases and is convex for t >= 0,
     // so Newton from any t with F(t) >= 0 converges monotonically to the root (Eberly's
     // formulation). F(t) >= R^2 / (t + max(A^2, B^2))^2 - 1 with R = |(A x, B y)|, so F >= 0 at
     // t = R - max(A^2, B^2): starting there instead of at 0 matters far outside a small ellipse
     // (loose snow, p0 -> 0), where Newton from 0 grows t by only ~1.5x per iteration.
-    double t = std::max(0.0, std::sqrt(A * A * x * x + B * B * y * y) - std::max(A * A, B * B));
+    auto F = [&](double s, double& dF) {
+      const double u = A * x / (s + A * A), v = B * y / (s + B * B);
+      dF = -2 * (u * u / (s + A * A) + v * v / (s + B * B));
+      return u * u + v * v - 1;
+    };
+    const double bound = std::max(0.0, std::sqrt(A * A * x * x + B * B * y * y) - std::max(A * A, B * B));
+    const double guess = t;
+    t = bound;
+    if (guess > bound) { // the hardening solve's previous root, for a slightly different ellipse
+      double dF;
+      const double f = F(guess, dF);
+      // Beyond the root, one Newton step lands at or before it (F is convex): still monotone.
+      t = f >= 0 ? guess : std::max(bound, guess - f / dF);
+    }
     for (int it = 0; it < 100; ++it) {
-      const double u = A * x / (t + A * A), v = B * y / (t + B * B);
-      const double F = u * u + v * v - 1;
-      if (F <= 1e-15) break;
-      const double dF = -2 * (u * u / (t + A * A) + v * v / (t + B * B));
-      const double step = -F / dF;
+      double dF;
+      const double f = F(t, dF);
+      if (f <= 1e-15) break;
+      const double step = -f / dF;
       t += step;
       if (step <= 1e-16 * (t + A * A + B * B)) break;
     }
@@ -85,7 +99,7 @@ struct CamClayModel {
   }
 
   /// Square roots the projection needs, computed once per yielding particle (the hardening
-  /// solve projects about seven times per particle).
+  /// solve projects two or three times per particle).
   struct Scales {
     double sK, s3mu, sqrtTension;
     explicit Scales(const CamClayModel& m)
@@ -93,13 +107,17 @@ struct CamClayModel {
           sqrtTension(std::sqrt(1 + 2 * m.params.beta)) {}
   };
 
-  /// Energy-norm closest point of (pTr, qTr) on the M_s ellipse of pre-consolidation p0.
-  void projectOntoEllipse(double pTr, double qTr, double p0, double& p, double& q) const {
-    projectOntoEllipse(Scales(*this), pTr, qTr, p0, p, q);
-  }
-  void projectOntoEllipse(const Scales& c, double pTr, double qTr, double p0, double& p, double& q) const {
+  /// Energy-norm closest point (p, q) of (pTr, qTr) on the M_s ellipse of pre-consolidation p0,
+  /// with its rate of change as the ellipse grows, dp/dp0 and dq/dp0.
+  /// The surface is homogeneous in (p, q, p0), so P(p0) = p0 P_1(z / p0) and
+  /// dP/dp0 = (P - J z) / p0, J being the projection's Jacobian: in the scaled (Euclidean)
+  /// coordinates J = T T^T / (1 + kappa d) (unit tangent T, curvature kappa, distance d).
+  /// t: closestOnEllipse's parameter, a guess on entry (0: none) and the root on exit.
+  void projectOntoEllipse(const Scales& c, double pTr, double qTr, double p0, double& p, double& q,
+                          double& dp, double& dq, double& t) const {
     const double sK = c.sK, s3mu = c.s3mu;
     const double beta = params.beta;
+    dp = 0, dq = 0;
     if (p0 <= 0) { // no strength left
       p = 0, q = 0;
       return;
@@ -107,14 +125,21 @@ struct CamClayModel {
     const double ap = 0.5 * (1 + beta) * p0, centre = 0.5 * (1 - beta) * p0;
     const double aq = params.Ms * ap / c.sqrtTension;
     const double x = (pTr - centre) / sK, y = qTr / s3mu, A = ap / sK, B = aq / s3mu;
-    if ((x / A) * (x / A) + (y / B) * (y / B) <= 1) { // already inside
+    if ((x / A) * (x / A) + (y / B) * (y / B) <= 1) { // already inside: P = z, J = I
       p = pTr, q = qTr;
       return;
     }
     double X, Y;
-    closestOnEllipse(std::abs(x), y, A, B, X, Y);
-    p = centre + sK * (x < 0 ? -X : X);
+    closestOnEllipse(std::abs(x), y, A, B, X, Y, t);
+    const double sign = x < 0 ? -1.0 : 1.0;
+    p = centre + sK * sign * X;
     q = s3mu * Y;
+    // In the reflected frame: normal n = (X/A^2, Y/B^2), tangent (-n_y, n_x) / |n|, the trial
+    // point at distance t |n|, curvature 1 / (A^2 B^2 |n|^3).
+    const double nx = X / (A * A), ny = Y / (B * B), n2 = nx * nx + ny * ny;
+    const double tangential = (-ny * sign * pTr / sK + nx * y) / (n2 * (1 + t / (A * A * B * B * n2)));
+    dp = (p - sK * sign * (-ny) * tangential) / p0;
+    dq = (q - s3mu * nx * tangential) / p0;
   }
 
   /// Return mapping; true when eps was changed. Rate-independent: dt unused.
@@ -125,19 +150,60 @@ struct CamClayModel {
     const double a = dev.norm(), qTr = k * a;
     const double ev0 = s.volumetricPlasticStrain, p00 = preconsolidation(ev0);
     if (yield(pTr, qTr, p00, slope(s)) <= 0) return false;
+    double ev, p, q;
+    if (!hardenNewton(pTr, qTr, ev0, p00, ev, p, q)) hardenBracketed(pTr, qTr, ev0, p00, ev, p, q);
+    s.volumetricPlasticStrain = float(ev);
+    s.yielded = 1;
+    eps = Vec3d::Constant(-p / (3 * K)) + (a > 0 ? q / qTr : 0.0) * dev;
+    return true;
+  }
 
-    // Consistent hardening: find eps_v with G(eps_v) = eps_v - ev0 - (p(eps_v) - pTr) / K = 0,
-    // p(eps_v) being the projection onto the ellipse of p0(eps_v). G runs from -inf (huge p0,
-    // trial inside) to +inf (p0 = 0), so a bracket always exists.
-    // p, q are those of the last G evaluation, at `evaluatedAt`.
-    double p = 0, q = 0, evaluatedAt = ev0;
+  // Consistent hardening: eps_v solves G(eps_v) = eps_v - ev0 - (p(eps_v) - pTr) / K = 0, p(eps_v)
+  // being the projection onto the ellipse of p0(eps_v). G runs from -inf (huge p0, trial inside)
+  // to +inf (p0 = 0), so a bracket always exists.
+
+  /// Newton on G with the projection's analytic derivative: 2-3 projections per yielding
+  /// particle. False (and nothing to use) when it does not converge in a few steps; the caller
+  /// then brackets. The last, tiny step moves p and q along their tangent instead of
+  /// projecting again (error ~ step^2, below the float the state is stored in).
+  bool hardenNewton(double pTr, double qTr, double ev0, double p00, double& ev, double& p, double& q,
+                    int* projections = nullptr) const {
+    const double K = elastic.bulk(), xi = params.xi;
     const Scales scales(*this);
-    auto Gp0 = [&](double ev, double p0) {
-      projectOntoEllipse(scales, pTr, qTr, p0, p, q);
-      evaluatedAt = ev;
-      return ev - ev0 - (p - pTr) / K;
+    ev = ev0;
+    double p0 = p00, t = 0;
+    for (int it = 0; it < 12; ++it) {
+      double dp, dq;
+      projectOntoEllipse(scales, pTr, qTr, p0, p, q, dp, dq, t);
+      if (projections) *projections = it + 1;
+      const double dp0 = ev < 0 ? -xi * std::sqrt(K * K + p0 * p0) : 0.0; // dp0/d eps_v (eq. 10)
+      const double g = ev - ev0 - (p - pTr) / K, slopeG = 1 - dp * dp0 / K;
+      if (!(slopeG > 0)) return false;
+      const double step = -g / slopeG;
+      if (!std::isfinite(step)) return false;
+      ev += step;
+      if (std::abs(step) <= 1e-9 * (1 + std::abs(ev))) {
+        p += dp * dp0 * step, q += dq * dp0 * step;
+        return true;
+      }
+      p0 = preconsolidation(ev, K);
+    }
+    return false;
+  }
+
+  /// Bracket and Illinois false position on G: slow (~6 projections) but always converges.
+  void hardenBracketed(double pTr, double qTr, double ev0, double p00, double& ev, double& p,
+                       double& q) const {
+    const double K = elastic.bulk();
+    double evaluatedAt = ev0; // p, q are those of the last G evaluation
+    const Scales scales(*this);
+    auto Gp0 = [&](double e, double p0) {
+      double dp, dq, t = 0;
+      projectOntoEllipse(scales, pTr, qTr, p0, p, q, dp, dq, t);
+      evaluatedAt = e;
+      return e - ev0 - (p - pTr) / K;
     };
-    auto G = [&](double ev) { return Gp0(ev, preconsolidation(ev, K)); };
+    auto G = [&](double e) { return Gp0(e, preconsolidation(e, K)); };
     double x0 = ev0, g0 = Gp0(x0, p00);
     double lo, hi, glo, ghi;
     double step = std::abs(g0) + 1e-9;
@@ -148,7 +214,6 @@ struct CamClayModel {
       lo = x0, glo = g0, hi = x0 + step, ghi = G(hi);
       while (ghi < 0) step *= 2, lo = hi, glo = ghi, hi = x0 + step, ghi = G(hi);
     }
-    // Illinois false position inside the bracket.
     double x = hi;
     int side = 0;
     for (int it = 0; it < 100 && hi - lo > 1e-14 * (1 + std::abs(hi)); ++it) {
@@ -166,10 +231,7 @@ struct CamClayModel {
       }
     }
     if (evaluatedAt != x) G(x); // p, q of the final eps_v
-    s.volumetricPlasticStrain = float(x);
-    s.yielded = 1;
-    eps = Vec3d::Constant(-p / (3 * K)) + (a > 0 ? q / qTr : 0.0) * dev;
-    return true;
+    ev = x;
   }
 };
 

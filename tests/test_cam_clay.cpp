@@ -90,3 +90,68 @@ TEST(CamClay, SlopeDropsToFlowingValueAfterFirstYield) {
   EXPECT_TRUE(m.project(eps, yielded, 1e-3)); // flowing snow (M_s = 0.4) does not
   EXPECT_LT(qOf(m, eps), 0.4 / 1.2 * qMax * 1.01);
 }
+
+// The projection's sensitivity to the ellipse size, dp/dp0 and dq/dp0, is analytic (the Newton
+// hardening solve's derivative). Central differences with a 1e-6 relative step are accurate to
+// ~1e-9 here; 1e-5 leaves room and still catches a wrong sign or a missing curvature term
+// (those are O(1) errors).
+TEST(CamClay, ProjectionSensitivityToTheEllipseSizeMatchesFiniteDifferences) {
+  const auto m = snow();
+  const CamClayModel::Scales scales(m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int outside = 0;
+  for (int t = 0; t < 2000; ++t) {
+    const double p0 = 1e3 * std::pow(10.0, 3 * unit(rng));
+    const double pTr = p0 * (-2 + 5 * unit(rng)), qTr = p0 * 3 * unit(rng);
+    double p, q, dp, dq, pPlus, qPlus, pMinus, qMinus, unused1, unused2, tRoot = 0;
+    m.projectOntoEllipse(scales, pTr, qTr, p0, p, q, dp, dq, tRoot);
+    if (p == pTr && q == qTr) continue; // inside: P = z, no sensitivity
+    ++outside;
+    const double h = 1e-6 * p0;
+    // Started from this root (the hardening solve's warm start): on both sides of it.
+    double tPlus = tRoot, tMinus = tRoot;
+    m.projectOntoEllipse(scales, pTr, qTr, p0 + h, pPlus, qPlus, unused1, unused2, tPlus);
+    m.projectOntoEllipse(scales, pTr, qTr, p0 - h, pMinus, qMinus, unused1, unused2, tMinus);
+    EXPECT_NEAR(dp, (pPlus - pMinus) / (2 * h), 1e-5 * (1 + std::abs(dp))) << pTr << " " << qTr << " " << p0;
+    EXPECT_NEAR(dq, (qPlus - qMinus) / (2 * h), 1e-5 * (1 + std::abs(dq))) << pTr << " " << qTr << " " << p0;
+  }
+  EXPECT_GT(outside, 1000);
+}
+
+// Newton on the hardening equation lands where the bracketed (Illinois) solve does, to 1e-9 in
+// eps_v (the state is stored in float, 6e-8 relative) and 1e-8 of the stress scale in (p, q),
+// in at most six projections and three or fewer on average (the bracketed solve takes ~6).
+TEST(CamClay, NewtonHardeningAgreesWithTheBracketedSolveInFewProjections) {
+  const auto m = snow();
+  const double K = m.elastic.bulk();
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> strain(-0.3, 0.3), unit(0, 1);
+  int solved = 0, projections = 0, most = 0;
+  for (int t = 0; t < 20000; ++t) {
+    Vec3d eps(strain(rng), strain(rng), strain(rng));
+    eps *= std::pow(10.0, -1 - 3 * unit(rng));
+    CamClayModel::State s;
+    s.volumetricPlasticStrain = float(m.initialVolumetricStrain() * std::pow(10.0, -4 * unit(rng)));
+    s.yielded = 1;
+    const double pTr = pOf(m, eps), qTr = qOf(m, eps);
+    const double ev0 = s.volumetricPlasticStrain, p00 = m.preconsolidation(ev0);
+    if (m.yield(pTr, qTr, p00, m.params.Ms) <= 0) continue;
+    double evN, pN, qN, evB, pB, qB;
+    int n = 0;
+    ASSERT_TRUE(m.hardenNewton(pTr, qTr, ev0, p00, evN, pN, qN, &n)) << pTr << " " << qTr << " " << ev0;
+    m.hardenBracketed(pTr, qTr, ev0, p00, evB, pB, qB);
+    const double scale = std::abs(pTr) + qTr + p00;
+    EXPECT_NEAR(evN, evB, 1e-9 * (1 + std::abs(evB)));
+    EXPECT_NEAR(pN, pB, 1e-8 * scale);
+    EXPECT_NEAR(qN, qB, 1e-8 * scale);
+    // Consistency: the plastic volume change is the pressure's return, G = 0.
+    EXPECT_NEAR(evN - ev0, (pN - pTr) / K, 1e-9 * (1 + std::abs(evN)) + 1e-8 * scale / K);
+    ++solved, projections += n, most = std::max(most, n);
+  }
+  EXPECT_GT(solved, 5000);
+  EXPECT_LE(most, 6);
+  EXPECT_LE(double(projections) / solved, 3.0);
+  std::printf("Newton hardening: %d solves, %.2f projections on average, at most %d\n", solved,
+              double(projections) / solved, most);
+}
