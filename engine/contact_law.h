@@ -76,9 +76,10 @@ std::shared_ptr<const ContactLaw> makeContactLaw(const Law& law) {
 /// collider is removed; that removal dvn is the node's share of the basal normal impulse per unit
 /// mass (sigma dt / (rho h) over a plug), so a law whose shear is tau = muEff(u) sigma slows the
 /// tangential speed u_t to the root of u = u_t - muEff(u) dvn in [0, u_t]: it never reverses
-/// the node within a step. `muEff` is the shear over the normal stress at speed u.
-template <class MuEff>
-inline void slideImplicitly(ContactNode& c, MuEff&& muEff) {
+/// the node within a step. `muEff` is the shear over the normal stress at speed u, `slope` its
+/// derivative d muEff / du (analytic: the solve runs at every contact node of every step).
+template <class MuEff, class Slope>
+inline void slideImplicitly(ContactNode& c, MuEff&& muEff, Slope&& slope) {
   const Real vn = c.v.dot(c.n);
   if (vn >= 0) return; // separating: no contact stress
   const Vec3 vt = c.v - vn * c.n;
@@ -87,17 +88,18 @@ inline void slideImplicitly(ContactNode& c, MuEff&& muEff) {
     c.v.setZero(); // the static part holds
     return;
   }
-  // f(u) = u - ut + muEff(u) dvn rises from f(0) < 0 to f(ut) > 0: safeguarded Newton.
+  // f(u) = u - ut + muEff(u) dvn rises from f(0) < 0 to f(ut) > 0: safeguarded Newton. The
+  // node's velocity is stored in float (Real), so 1e-8 of ut is below its last bit.
   double lo = 0, hi = ut, u = ut - muEff(ut) * dvn;
   if (!(u > lo && u < hi)) u = 0.5 * (lo + hi);
   for (int it = 0; it < 50; ++it) {
-    const double e = 1e-6 * (u + 1e-9), f = u - ut + muEff(u) * dvn;
+    const double f = u - ut + muEff(u) * dvn;
     if (f > 0) hi = u;
     else lo = u;
-    const double df = 1 + (muEff(u + e) - muEff(u - e)) / (2 * e) * dvn;
+    const double df = 1 + slope(u) * dvn;
     double next = u - f / df;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - u) <= 1e-10 * ut) {
+    if (std::abs(next - u) <= 1e-8 * ut) {
       u = next;
       break;
     }

@@ -28,7 +28,7 @@ struct SamosAtLaw {
 
   /// tau / sigma at speed u for basal normal stress sigma (Pa), density rho and thickness h.
   /// What does not depend on u (the logarithm above all) is computed once per node: the implicit
-  /// solve evaluates the shear about ten times per node.
+  /// solve evaluates the shear and its slope a few times per node.
   struct Shear {
     double mu, rs0, rho, minShearOverSigma, sigmaPlus, turbulentDenominator;
     Shear(double sigma, double rho, double h, const double p[6])
@@ -39,6 +39,11 @@ struct SamosAtLaw {
     double operator()(double u) const {
       const double rs = rho * u * u / sigmaPlus;
       return minShearOverSigma + mu * (1 + rs0 / (rs0 + rs)) + rho * u * u / turbulentDenominator;
+    }
+    /// d/du of the above.
+    double slope(double u) const {
+      const double rs = rho * u * u / sigmaPlus, r = rs0 + rs;
+      return 2 * rho * u * (1 / turbulentDenominator - mu * rs0 / (r * r * sigmaPlus));
     }
   };
   static double shearOverNormal(double u, double sigma, double rho, double h, const double p[6]) {
@@ -52,11 +57,11 @@ struct SamosAtLaw {
     const double gn = -double(s.gravity.dot(c.n));
     const double sigma = double(c.rho) * gn * double(c.h);
     if (!(sigma > 0)) { // no hydrostatic support (a wall, an overhang): the Coulomb part alone
-      slideImplicitly(c, [&](double) { return p[0]; });
+      slideImplicitly(c, [&](double) { return p[0]; }, [](double) { return 0.0; });
       return;
     }
     const Shear shear(sigma, double(c.rho), double(c.h), p);
-    slideImplicitly(c, shear);
+    slideImplicitly(c, shear, [&](double u) { return shear.slope(u); });
   }
 };
 

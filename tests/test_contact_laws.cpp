@@ -134,6 +134,19 @@ TEST(ContactLaws, SamosAtShearIsAvaFramesFormula) {
     }
 }
 
+// The implicit step's Newton uses the shear's analytic slope; central differences with a 1e-5
+// relative step are accurate to ~1e-9 of the slope here, so 1e-6 catches a wrong term (O(1)).
+TEST(ContactLaws, SamosAtShearSlopeMatchesFiniteDifferences) {
+  const double p[6] = {0.155, 0, 0.222, 0.43, 0.05, 4.13};
+  for (double h : {0.01, 0.3, 1.0, 5.0})
+    for (double v : {0.01, 0.5, 5.0, 20.0, 60.0}) {
+      const double rho = 200, sigma = rho * 9.81 * h, e = 1e-5 * v;
+      const SamosAtLaw::Shear shear(sigma, rho, h, p);
+      const double fd = (shear(v + e) - shear(v - e)) / (2 * e);
+      EXPECT_NEAR(shear.slope(v), fd, 1e-6 * (std::abs(fd) + 1e-3)) << "h " << h << " v " << v;
+    }
+}
+
 TEST(ContactLaws, SamosAtStepSolvesTheImplicitBalanceAndHoldsTwiceMuAtRest) {
   const SamosAtLaw law;
   const double dvn = 0.01, h = 1, rho = 200, sigma = rho * 9.81 * h;
