@@ -52,11 +52,11 @@ Point fromCost(double cells, double error, const RunCost& c) {
 
 std::vector<Case> cases(const std::string& shared) {
   std::vector<Case> c;
-  c.push_back({"sliding_block", "block on a 30° plane turned 20° off the axes, Coulomb μ = 0.3",
-               "max |s/s_exact − 1| once s > 5 cells", "cells across the 0.2 m block height",
+  c.push_back({"sliding_block", "block on a 30° plane turned 20° off the axes, Coulomb μ = 0.3, gravity ramped over 0.2 s",
+               "max |s/s_exact − 1| once s > 0.1 m (half the block height)", "cells across the 0.2 m block height",
                [](double cells, int ppc, double cfl) {
-                 const auto r = slidingBlock(0.3, {cells, ppc, cfl});
-                 return fromCost(cells, r.maxRelError, r);
+                 const auto r = slidingBlock(0.3, {cells, ppc, cfl}, 0.9, 0.2);
+                 return fromCost(cells, r.maxRelErrorBeyond(0.1), r);
                },
                {2, 4, 8, 16},
                {2, 4}});
@@ -276,9 +276,11 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        "\n"
        "- **Elastic bar**: first-order convergence of the period. The fixed end is a wall at a node, so the\n"
        "  bar's effective length is known only to O(dx); the first mode itself is resolved far better.\n"
-       "- **Sliding block**: the error does not fall with dx. It comes from the start, when the unstressed\n"
-       "  block first loads the plane and friction builds with the contact force, not from the spatial\n"
-       "  discretisation; it stays within the 2 % the test asks for at every resolution here.\n"
+       "- **Sliding block**: first order. Loaded suddenly, the undamped elastic block rings (normal force\n"
+       "  0..2 N, a 0.025 s period) and the 0.05 s samples alias the ringing into a start-up offset that\n"
+       "  does not fall with dx; an error counted from 5 cells even grew as that start moved earlier.\n"
+       "  Ramped over 0.2 s and measured beyond a fixed 0.1 m, the displacement converges; the fitted\n"
+       "  acceleration is within 0.04 % at every level.\n"
        "- **Dam break**: the front speed converges to within 3 % of Martin & Moyce's; the position leads\n"
        "  Koshizuka & Oka by up to 22 % at every resolution (the experiments' late start). The wall\n"
        "  pressure needs water at c ≥ 40 times the front speed; its impact peak is within 15 % of\n"
@@ -287,8 +289,10 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        "  fragment (a = 0.5, 5, 10: two finest levels within 3 %), to Lajeunesse's law rather than\n"
        "  Lube's for tall columns; at a = 2 it scatters by 8 %. The measure, the laws and the final\n"
        "  heights: docs/convergence.md.\n"
-       "- **Particles per cell and CFL**: at the resolutions above, neither moves the error much; cost is\n"
-       "  linear in particles per cell and inversely proportional to CFL.\n"
+       "- **Particles per cell and CFL**: at the resolutions above, neither moves the error much, except\n"
+       "  the ramped sliding block's CFL (0.41 / 0.63 / 0.84 % at CFL 0.2 / 0.4 / 0.6: its time error is\n"
+       "  as large as its spatial one); cost is linear in particles per cell and inversely proportional\n"
+       "  to CFL.\n"
        "- **Float against double**: the same errors at similar cost, except the a = 5 collapse, which is\n"
        "  chaotic: last-bit differences change where its thin front breaks (0.3 % against 2.5 % at 12\n"
        "  cells, both well inside its resolution scatter). Single precision with a local origin loses\n"
