@@ -25,10 +25,9 @@ struct RunCost {
 /// terrain SDF. cells = cells across the block's 0.2 m height (2 -> dx 0.1). s_exact =
 /// g t^2 (sin - mu cos) / 2, or its integral under the gravity ramp when there is one.
 struct SlidingBlockResult : RunCost {
-  double maxRelError = 0;          ///< max |s / exact - 1| once exact > 5 cells
   std::vector<double> t, s, exact; ///< samples every 0.05 s; exact follows the gravity ramp
-  /// max |s / exact - 1| once exact > `distance` (m): a fixed distance, unlike maxRelError's
-  /// 5 cells, which reaches back into the start-up as dx falls.
+  /// max |s / exact - 1| once exact > `distance` (m). A fixed distance: one in cells (5 dx)
+  /// reaches back into the start-up as dx falls.
   double maxRelErrorBeyond(double distance) const;
   double restDisplacement = 0;     ///< |s| at the end when the block should stay (mu > tan)
   double restSpeed = 0;
