@@ -24,6 +24,8 @@ struct G2PBlock {
   const Vec4* nodes;    ///< kPadNodes grid nodes (mass, velocity), padIndex order
   int origin[3];        ///< global index of the block's first node
   Real dt, dx, invDx;
+  const Vec4* old = nullptr; ///< AFLIP: (0, velocity before forces) of the same nodes, else null
+  Real flip = 0;             ///< AFLIP blend (SimulationSettings::flip)
 };
 
 /// Per-thread results of a G2P pass.

@@ -1,5 +1,6 @@
 #include "engine/periodic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <tbb/parallel_for.h>
 
@@ -75,14 +76,20 @@ void Periodicity::fold(SparseGrid& grid) const {
 }
 
 void Periodicity::unfold(SparseGrid& grid) const {
+  // The extra channels too: G2P reads AFLIP's momentum channels on ghost nodes.
+  const int C = grid.extraChannels;
   for (int a = 2; a >= 0; --a) { // the reverse of fold, so corner ghosts get their final images
     if (!axis[a]) continue;
     forGhostBlocks(*this, grid, a, [&](uint32_t ghost, uint32_t image, int side) {
       const BlockCoord& c = grid.topology.coord(ghost);
       Vec4* g = grid.block(ghost);
       const Vec4* im = grid.block(image);
-      for (int n = 0; n < kBlockNodes; ++n)
-        if (isGhost(*this, a, c, n, side)) g[n] = im[n];
+      for (int n = 0; n < kBlockNodes; ++n) {
+        if (!isGhost(*this, a, c, n, side)) continue;
+        g[n] = im[n];
+        if (C > 0)
+          std::copy_n(grid.blockExtra(image) + size_t(n) * size_t(C), C, grid.blockExtra(ghost) + size_t(n) * size_t(C));
+      }
     });
   }
 }

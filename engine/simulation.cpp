@@ -72,7 +72,8 @@ void Simulation::buildColliders() {
   for (auto& c : colliders_) colliderPtrs_.push_back(c.get());
   loads_.assign(colliders_.size(), ColliderLoad{});
   // P2G's extra channels: each particle's volume (channel 0) when a law needs the flow
-  // thickness, then the node mass of each material with its own basal law.
+  // thickness, then the node mass of each material with its own basal law, then AFLIP's
+  // stress-free momentum (3 channels).
   for (const auto& c : colliders_) needsThickness_ |= c->law().needsThickness();
   for (const auto* g : groupPtrs_)
     if (g->basalLaw) needsThickness_ |= g->basalLaw->needsThickness();
@@ -85,6 +86,10 @@ void Simulation::buildColliders() {
       to.push_back({channels++, 1.f});
     }
     grid_.extraOf.push_back(std::move(to));
+  }
+  if (settings_.flip > 0) {
+    grid_.momentumChannel = channels;
+    channels += 3;
   }
   grid_.extraChannels = channels;
   if (!channels) grid_.extraOf.clear();
@@ -159,7 +164,7 @@ double Simulation::step(double dtCap) {
   G2PStats stats;
   {
     ScopedTimer t(times_.g2p);
-    stats = gridToParticles(groupPtrs_, grid_, rdt);
+    stats = gridToParticles(groupPtrs_, grid_, rdt, Real(settings_.flip));
   }
   if (ranks_) {
     ScopedTimer t(times_.halo);

@@ -49,6 +49,10 @@ struct SimulationSettings {
   /// for reaching equilibrium states quasi-statically (a settled heap, a prestressed snowpack);
   /// it removes momentum, so leave it at 0 for the dynamics themselves.
   double damping = 0;
+  /// AFLIP blend (Fei et al. 2021, the paper group's `flip_ratio`): a particle's new velocity is
+  /// v_PIC + flip (v_p - v_old at p), carrying back a share of what the grid's interpolation
+  /// removed; positions still move with v_PIC. 0 is pure APIC (the default); costs 3 grid channels.
+  double flip = 0;
   Vec3d origin = Vec3d::Zero();     ///< world coordinates of the local frame's origin
   DomainBox domain;                 ///< local frame
   /// Contact law of each face of the domain box (x_min, x_max, y_min, y_max, z_min, z_max);

@@ -23,6 +23,9 @@ struct SparseGrid {
   int extraChannels = 0;
   std::vector<float> extra;
   std::vector<std::vector<std::pair<int, float>>> extraOf;
+  /// First of 3 channels holding every particle's APIC momentum without the stress term (the grid
+  /// velocity before forces, which the AFLIP blend's increment needs), or -1 when that is off.
+  int momentumChannel = -1;
 
   size_t blockCount() const { return topology.size(); }
   Vec4* block(uint32_t b) { return nodes.data() + size_t(b) * kBlockNodes; }

@@ -7,10 +7,29 @@
 
 namespace talus {
 
-G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt) {
+namespace {
+
+/// (0, velocity before forces) of the padded neighbourhood's nodes from P2G's momentum channels.
+void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out) {
+  const int C = grid.extraChannels, m = grid.momentumChannel;
+  forEachPaddedRow([&](int d, int pad, int node, int n) {
+    const Vec4* nodes = grid.block(uint32_t(up[d])) + node;
+    const float* q = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C) + size_t(m);
+    for (int k = 0; k < n; ++k, q += C) {
+      const Real mass = nodes[k][0];
+      const Real inv = mass > Real(0) ? Real(1) / mass : Real(0);
+      out[pad + k] << 0, inv * q[0], inv * q[1], inv * q[2];
+    }
+  });
+}
+
+} // namespace
+
+G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip) {
   tbb::combinable<G2PStats> stats;
+  const bool aflip = flip > Real(0) && grid.momentumChannel >= 0;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.owning.size(), 1), [&](const auto& r) {
-    std::vector<Vec4> buf(kPadNodes);
+    std::vector<Vec4> buf(kPadNodes), old(aflip ? kPadNodes : 0);
     G2PStats& st = stats.local();
     for (size_t o = r.begin(); o != r.end(); ++o) {
       const uint32_t b = grid.owning[o];
@@ -22,6 +41,11 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
       const BlockCoord& c = grid.topology.coord(b);
       G2PBlock blk{buf.data(), {c.x * kBlockDim, c.y * kBlockDim, c.z * kBlockDim}, dt, grid.dx,
                    Real(1) / grid.dx};
+      if (aflip) {
+        copyOldVelocities(grid, up, old.data());
+        blk.old = old.data();
+        blk.flip = flip;
+      }
       for (MaterialGroup* g : groups) {
         const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
         if (begin != end) g->gridToParticles(blk, begin, end, st);

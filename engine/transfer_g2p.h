@@ -8,6 +8,17 @@
 
 namespace talus {
 
+/// The interpolated (0, v) of padded nodes `at` (the stencil's first node) under stencil s.
+inline Vec3 gatherOld(const Vec4* at, const QuadraticStencil& s) {
+  Vec4 v = Vec4::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Vec4* row = at + padIndex(i, j, 0);
+      v += (s.w[0][i] * s.w[1][j]) * (s.w[2][0] * row[0] + s.w[2][1] * row[1] + s.w[2][2] * row[2]);
+    }
+  return v.tail<3>();
+}
+
 /// Gathers v and C for particles [begin, end), lets `update(i, C)` advance the material state
 /// (deformation, return mapping, Kirchhoff stress), then advects x with the new velocity.
 template <class UpdateFn>
@@ -40,14 +51,15 @@ inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, s
     C.col(0) = cScale * (bi.tail<3>() - s.f[0] * vel);
     C.col(1) = cScale * (bj.tail<3>() - s.f[1] * vel);
     C.col(2) = cScale * (bk.tail<3>() - s.f[2] * vel);
-    P.v[p] = vel;
+    if (blk.old) P.v[p] = vel + blk.flip * (P.v[p] - gatherOld(blk.old + padIndex(l0, l1, l2), s));
+    else P.v[p] = vel;
     P.C[p] = C;
     update(p, C);
-    P.x[p] += dt * vel;
+    P.x[p] += dt * vel; // with the PIC velocity also under AFLIP (Fei et al. 2021)
     // x - x is 0 for finite x and NaN otherwise: one test catches a bad stress in this step.
     const Sym3& t = P.tau[p];
     const Real finite = (t.xx - t.xx) + (t.yy - t.yy) + (t.zz - t.zz) + (t.xy - t.xy) + (t.xz - t.xz) + (t.yz - t.yz);
-    const Real s2 = vel.squaredNorm();
+    const Real s2 = std::max(vel.squaredNorm(), P.v[p].squaredNorm());
     const bool badSpeed = !std::isfinite(s2);
     if (!badSpeed && s2 > maxSpeed2) maxSpeed2 = s2;
     if (badSpeed || !(finite == Real(0))) ++stats.nonFinite;
@@ -61,5 +73,5 @@ namespace talus {
 struct SparseGrid;
 /// Runs G2P (and through each group, deformation update, return mapping and stress) for all
 /// owning blocks in parallel. Blocks only read the grid, so no colouring is needed.
-G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt);
+G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip = 0);
 } // namespace talus

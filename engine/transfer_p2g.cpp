@@ -53,18 +53,25 @@ void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
   });
 }
 
-/// The extra channels of particles [begin, end): factor * mass into each listed channel.
+/// The extra channels of particles [begin, end): factor * mass into each listed channel, and
+/// at `momentum` (when >= 0) the momentum m (v + C (x_i - x_p)) without P2G's stress term.
 void scatterExtra(const ParticleSet& P, size_t begin, size_t end, const std::vector<std::pair<int, float>>& to,
-                  int channels, Real invDx, const int origin[3], float* buf) {
+                  int momentum, int channels, Real dx, const int origin[3], float* buf) {
+  const Real invDx = Real(1) / dx;
   for (size_t p = begin; p < end; ++p) {
     const QuadraticStencil s(P.x[p] * invDx);
     const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
+    const Mat3 Cdx = dx * P.C[p];
+    const Vec3 v0 = P.v[p] - Cdx * Vec3(s.f[0], s.f[1], s.f[2]); // velocity carried to offset (0,0,0)
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k) {
           const float w = float(s.w[0][i] * s.w[1][j] * s.w[2][k]) * float(P.mass[p]);
           float* node = buf + size_t(padIndex(l0 + i, l1 + j, l2 + k)) * size_t(channels);
           for (const auto& [ch, factor] : to) node[ch] += w * factor;
+          if (momentum < 0) continue;
+          const Vec3 vi = v0 + Cdx * Vec3(Real(i), Real(j), Real(k));
+          for (int d = 0; d < 3; ++d) node[momentum + d] += w * float(vi[d]);
         }
   }
 }
@@ -85,8 +92,9 @@ void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& g
   std::fill(extra, extra + size_t(kPadNodes) * size_t(C), 0.f);
   for (size_t gi = 0; gi < groups.size(); ++gi) {
     const size_t begin = groups[gi]->blockStart[b], end = groups[gi]->blockStart[b + 1];
-    if (begin != end && !grid.extraOf[gi].empty())
-      scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], C, Real(1) / grid.dx, origin, extra);
+    if (begin != end && (!grid.extraOf[gi].empty() || grid.momentumChannel >= 0))
+      scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], grid.momentumChannel, C, grid.dx, origin,
+                   extra);
   }
 }
 

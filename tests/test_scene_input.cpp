@@ -71,6 +71,7 @@ TEST(SceneInput, MalformedTomlNamesTheLine) {
 TEST(SceneInput, NegativeAndNonFiniteValuesNameTheKey) {
   expectError(replace(kGood, "density = 2700", "density = -2700"), 10, "materials[0].density", "positive");
   expectError(replace(kGood, "dx = 0.1", "dx = nan"), 2, "simulation.dx", "finite");
+  expectError(replace(kGood, "end_time = 1.0", "end_time = 1.0\nflip = 1.5"), 4, "simulation.flip", "[0, 1]");
 }
 
 TEST(SceneInput, PoissonRatioOfOneHalfIsRefused) {

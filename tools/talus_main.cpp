@@ -133,8 +133,7 @@ int main(int argc, char** argv) {
 
   WorkPrecisionOptions wp;
   std::string single;
-  double singleCells = 0, singleCfl = 0.4;
-  int singlePpc = 8;
+  validation::Resolution singleRes{0, 8, 0.4, 0};
   auto* wpCmd = app.add_subcommand("work-precision",
                                    "Refine the validation cases; write docs/performance.md and its error-vs-time plot");
   wpCmd->add_option("--out", wp.markdown, "Markdown report");
@@ -143,9 +142,10 @@ int main(int argc, char** argv) {
   wpCmd->add_option("--double", wp.doubleBinary, "A talus built with -DTALUS_DOUBLE=ON");
   wpCmd->add_flag("--quick", wp.quick, "Fewer, coarser runs");
   wpCmd->add_option("--single", single, "Run one case and print: error wall particles steps figures");
-  wpCmd->add_option("--cells", singleCells, "Resolution for --single");
-  wpCmd->add_option("--ppc", singlePpc, "Particles per cell for --single (8)")->check(CLI::Range(1, 64));
-  wpCmd->add_option("--cfl", singleCfl, "CFL number for --single (0.4)")->check(CLI::Range(0.01, 1.0));
+  wpCmd->add_option("--cells", singleRes.cells, "Resolution for --single");
+  wpCmd->add_option("--ppc", singleRes.particlesPerCell, "Particles per cell for --single (8)")->check(CLI::Range(1, 64));
+  wpCmd->add_option("--cfl", singleRes.cfl, "CFL number for --single (0.4)")->check(CLI::Range(0.01, 1.0));
+  wpCmd->add_option("--flip", singleRes.flip, "AFLIP blend for --single (0: APIC)")->check(CLI::Range(0.0, 1.0));
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
       return runRankBenchmarks(bench, gRanks);
     }
     if (*benchCmd) return runBenchmarks(bench);
-    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleCells, singlePpc, singleCfl, wp.sharedDir);
+    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleRes, wp.sharedDir);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);

@@ -12,6 +12,7 @@ struct Resolution {
   double cells = 1;  ///< case-specific resolution (cells across the characteristic length)
   int particlesPerCell = 8;
   double cfl = 0.4;
+  double flip = 0; ///< AFLIP blend (0: APIC)
 };
 
 /// What every run reports, besides its error.

@@ -12,7 +12,8 @@ namespace talus::validation::detail {
 std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, RunCost& cost) {
   SceneSetup s = loadSceneString(toml, "validation.toml",
                                  {"simulation.particles_per_cell=" + std::to_string(r.particlesPerCell),
-                                  "simulation.cfl=" + std::to_string(r.cfl)});
+                                  "simulation.cfl=" + std::to_string(r.cfl),
+                                  "simulation.flip=" + std::to_string(r.flip)});
   auto sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
   cost.particles = sim->particleCount();
   return sim;

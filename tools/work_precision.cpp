@@ -36,7 +36,7 @@ struct Point {
 
 struct Case {
   std::string name, what, errorMeaning, cellsMeaning;
-  std::function<Point(double cells, int ppc, double cfl)> run;
+  std::function<Point(const Resolution& res)> run;
   std::vector<double> levels, quickLevels;
 };
 
@@ -54,16 +54,16 @@ std::vector<Case> cases(const std::string& shared) {
   std::vector<Case> c;
   c.push_back({"sliding_block", "block on a 30° plane turned 20° off the axes, Coulomb μ = 0.3, gravity ramped over 0.2 s",
                "max |s/s_exact − 1| once s > 0.1 m (half the block height)", "cells across the 0.2 m block height",
-               [](double cells, int ppc, double cfl) {
-                 const auto r = slidingBlock(0.3, {cells, ppc, cfl}, 0.9, 0.2);
-                 return fromCost(cells, r.maxRelErrorBeyond(0.1), r);
+               [](const Resolution& res) {
+                 const auto r = slidingBlock(0.3, res, 0.9, 0.2);
+                 return fromCost(res.cells, r.maxRelErrorBeyond(0.1), r);
                },
                {2, 4, 8, 16},
                {2, 4}});
   c.push_back({"elastic_bar", "fixed–free elastic bar, first mode", "|T/(4L/c) − 1|", "cells along the bar",
-               [](double cells, int ppc, double cfl) {
-                 const auto r = elasticBar({cells, ppc, cfl});
-                 return fromCost(cells, std::abs(r.relError), r);
+               [](const Resolution& res) {
+                 const auto r = elasticBar(res);
+                 return fromCost(res.cells, std::abs(r.relError), r);
                },
                {8, 16, 32, 64},
                {8, 16}});
@@ -71,10 +71,10 @@ std::vector<Case> cases(const std::string& shared) {
     const std::string dir = shared + "/validation/dam_break/";
     c.push_back({"dam_break", "dam break against Koshizuka & Oka (1996), T ≤ 3",
                  "mean |Z/Z_exp − 1| (includes the experiment's late start)", "cells across the column width",
-                 [dir](double cells, int ppc, double cfl) {
-                   const auto run = damBreak({cells, ppc, cfl});
+                 [dir](const Resolution& res) {
+                   const auto run = damBreak(res);
                    const auto k = compareFront(run, dir + "koshizuka_oka_1996_pysph.csv");
-                   Point p = fromCost(cells, k.meanRelError, run);
+                   Point p = fromCost(res.cells, k.meanRelError, run);
                    p.detail = fmt("max %.3f", k.maxRelError);
                    return p;
                  },
@@ -82,10 +82,10 @@ std::vector<Case> cases(const std::string& shared) {
                  {10}});
     c.push_back({"dam_break_speed", "dam-break front speed dZ/dT (2 ≤ Z ≤ 8) against Martin & Moyce (1952)",
                  "|dZ/dT / (dZ/dT)_exp − 1|", "cells across the column width",
-                 [dir](double cells, int ppc, double cfl) {
-                   const auto run = damBreak({cells, ppc, cfl});
+                 [dir](const Resolution& res) {
+                   const auto run = damBreak(res);
                    const auto m = compareFront(run, dir + "martin_moyce_1952_n2eq2_a2.25in_pysph.csv");
-                   Point p = fromCost(cells, std::abs(m.frontSpeed / m.frontSpeedExp - 1), run);
+                   Point p = fromCost(res.cells, std::abs(m.frontSpeed / m.frontSpeedExp - 1), run);
                    p.detail = fmt("dZ/dT %.3f", m.frontSpeed) + fmt(" (%.3f)", m.frontSpeedExp);
                    return p;
                  },
@@ -93,9 +93,9 @@ std::vector<Case> cases(const std::string& shared) {
                  {10}});
     c.push_back({"wall_impact", "dam break onto a wall, sensor P1 against Buchner (2002), c = 200 m/s",
                  "|P_peak/P_peak,exp − 1| of the impact (T ≤ 3.3), 0.2 moving average", "cells across the column height H",
-                 [dir](double cells, int ppc, double cfl) {
-                   const auto r = wallImpact(dir + "buchner2002_pressure_P1_trixiparticles.csv", {cells, ppc, cfl});
-                   Point p = fromCost(cells, std::abs(r.peak / r.peakExp - 1), r);
+                 [dir](const Resolution& res) {
+                   const auto r = wallImpact(dir + "buchner2002_pressure_P1_trixiparticles.csv", res);
+                   Point p = fromCost(res.cells, std::abs(r.peak / r.peakExp - 1), r);
                    p.detail = fmt("onset T %.2f", r.onsetT) + fmt(" (%.2f)", r.onsetTExp) + fmt(", peak %.3f", r.peak) +
                               fmt(" at %.2f", r.peakT) + fmt(" (%.3f", r.peakExp) + fmt(" at %.2f)", r.peakTExp) +
                               fmt(", plateau %.3f", r.plateau) + fmt(" (%.3f)", r.plateauExp);
@@ -117,9 +117,9 @@ std::vector<Case> cases(const std::string& shared) {
                    : a > 2.8 ? "|run-out / 1.9a^(2/3) − 1|"
                              : "distance from Lube's band [1.2a, 1.9a^(2/3)] relative to its nearer edge",
                    "cells across the column length L0",
-                   [a, model](double cells, int ppc, double cfl) {
-                     const auto r = columnCollapse(a, {cells, ppc, cfl}, model);
-                     Point p = fromCost(cells, std::abs(r.relError), r);
+                   [a, model](const Resolution& res) {
+                     const auto r = columnCollapse(a, res, model);
+                     Point p = fromCost(res.cells, std::abs(r.relError), r);
                      p.detail = fmt("run-out %.3g", r.runOut) +
                                 (r.lubeLow < r.lubeHigh ? fmt(" (Lube %.3g", r.lubeLow) + fmt("–%.3g", r.lubeHigh)
                                                         : fmt(" (Lube %.3g", r.reference)) +
@@ -216,10 +216,10 @@ std::string runDouble(const std::string& binary, const std::string& name, double
 
 } // namespace
 
-int runSingleCase(const std::string& caseName, double cells, int ppc, double cfl, const std::string& shared) {
+int runSingleCase(const std::string& caseName, const Resolution& res, const std::string& shared) {
   for (const Case& c : cases(shared))
     if (c.name == caseName) {
-      const Point p = c.run(cells, ppc, cfl);
+      const Point p = c.run(res);
       std::printf("%.9g %.6g %zu %llu %s\n", p.error, p.wall, p.particles, p.steps, p.detail.c_str());
       return 0;
     }
@@ -256,7 +256,7 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        << ".\n\n| resolution | particles | steps | wall (s) | error | observed order | figures |\n|---|---|---|---|---|---|---|\n";
     std::vector<Point> pts;
     for (double cells : opt.quick ? c.quickLevels : c.levels) {
-      const Point p = c.run(cells, 8, 0.4);
+      const Point p = c.run({cells, 8, 0.4});
       const std::string order =
           pts.empty() || !(p.error > 0) || !(pts.back().error > 0)
               ? "–"
@@ -309,7 +309,7 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
     const double cells = c.name == "sliding_block" ? (opt.quick ? 2 : 4) : (opt.quick ? 16 : 32);
     for (const auto& [ppc, cfl] : std::vector<std::pair<int, double>>{{1, 0.4}, {8, 0.4}, {27, 0.4}, {8, 0.2}, {8, 0.6}}) {
       if (opt.quick && ppc == 27) continue;
-      const Point p = c.run(cells, ppc, cfl);
+      const Point p = c.run({cells, ppc, cfl});
       md << "| " << c.name << " | " << ppc << " | " << cfl << " | " << p.particles << " | " << p.steps << " | "
          << fmt("%.2f", p.wall) << " | " << fmt("%.3g", p.error) << " |\n";
     }

@@ -2,6 +2,8 @@
 // command into docs/performance.md and a log-log PNG of error against wall time.
 #pragma once
 
+#include "tools/validation_cases.h"
+
 #include <string>
 
 namespace talus {
@@ -18,6 +20,6 @@ int runWorkPrecision(const WorkPrecisionOptions& options);
 
 /// One case at one resolution, printed as "error wall_seconds particles steps" (used to run the
 /// double-precision binary from the float one).
-int runSingleCase(const std::string& caseName, double cells, int ppc, double cfl, const std::string& sharedDir);
+int runSingleCase(const std::string& caseName, const validation::Resolution& res, const std::string& sharedDir);
 
 } // namespace talus

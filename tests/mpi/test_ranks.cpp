@@ -264,6 +264,13 @@ TEST(Ranks, AGranularCollapseIsBitIdentical) {
   expectInvariant(r, kCollapse, {}, 200);
 }
 
+TEST(Ranks, AnAflipCollapseIsBitIdentical) {
+  // AFLIP's momentum channels are summed across ranks with the other extra channels.
+  const std::vector<std::string> flip{"simulation.flip=0.9"};
+  RankRun r = runDistributed(kCollapse, flip, 200);
+  expectInvariant(r, kCollapse, flip, 200);
+}
+
 TEST(Ranks, UnequalSharesMoveTheRangesNotTheResults) {
   // talus run gives rank 0 a smaller share when the outputs it writes cost time
   // (io/run/run_ranks.h); here it is given none halfway through.
