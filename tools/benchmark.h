@@ -16,6 +16,7 @@ struct BenchOptions {
   int steps = 40;   ///< timed steps after warm-up
   int warmup = 5;
   double scale = 1; ///< multiplies the particle count (approximately)
+  double flip = 0;  ///< AFLIP blend of every case ([simulation] flip; 0: APIC)
 };
 
 /// One benchmark measurement.
@@ -32,8 +33,9 @@ struct BenchResult {
 };
 
 std::vector<std::string> benchmarkCaseNames();
-/// The scene of a benchmark case, its particle count multiplied by about `scale`.
-SceneSetup benchmarkScene(const std::string& name, double scale);
+/// The scene of a benchmark case, its particle count multiplied by about `scale`, with the
+/// AFLIP blend `flip`.
+SceneSetup benchmarkScene(const std::string& name, double scale, double flip = 0);
 
 /// `mpirun -np N talus bench --ranks`: each case distributed over the N ranks (threads per rank:
 /// the first of options.threads); rank 0 prints throughput, communication time and bytes.

@@ -153,6 +153,7 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--threads", bench.threads, "Thread counts to run (default: 1 2)");
   benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
   benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
+  benchCmd->add_option("--flip", bench.flip, "AFLIP blend of every case (0: APIC)")->check(CLI::Range(0.0, 1.0));
   bool benchRanks = false;
   benchCmd->add_flag("--ranks", benchRanks,
                      "Under mpirun: distribute each case over the ranks (threads per rank: the first --threads)");
