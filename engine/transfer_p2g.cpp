@@ -11,11 +11,20 @@ namespace talus {
 
 namespace {
 
-/// Scatter particles [begin, end) of one group into the padded block buffer.
-void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePerMass, Real dt,
-                  Real dx, const int origin[3], Vec4* buf) {
+/// Where AFLIP's stress-free momentum goes: three float channels at `channel` of `buf`, stride `stride`.
+struct MomentumOut {
+  float* buf;
+  int channel, stride;
+};
+
+/// Scatter particles [begin, end) of one group into the padded block buffer; with kMomentum, also
+/// the stress-free momentum m (v + C (x_i - x_p)) AFLIP needs, sharing the stencil and weights.
+template <bool kMomentum>
+void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePerMass, Real dt, Real dx,
+                  const int origin[3], Vec4* buf, MomentumOut out = {}) {
   const Real invDx = Real(1) / dx;
   const Real stressScale = dt * volumePerMass * Real(4) * invDx * invDx; // dt V0 D^-1 per unit mass
+  const size_t stride = size_t(out.stride);
   for (size_t p = begin; p < end; ++p) {
     const QuadraticStencil s(P.x[p] * invDx);
     const Real m = P.mass[p];
@@ -29,16 +38,33 @@ void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePer
     a0 << 0, Ad.col(0);
     a1 << 0, Ad.col(1);
     a2 << 0, Ad.col(2);
+    Mat3 Md; // the same without the stress term
+    Vec3 r0;
+    if constexpr (kMomentum) {
+      Md = (m * dx) * P.C[p];
+      r0 = m * P.v[p] - Md * f;
+    }
     const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
     for (int i = 0; i < 3; ++i) {
       const Vec4 qi = q0 + Real(i) * a0;
       for (int j = 0; j < 3; ++j) {
         const Vec4 qij = qi + Real(j) * a1;
         const Real wij = s.w[0][i] * s.w[1][j];
-        Vec4* row = buf + padIndex(l0 + i, l1 + j, l2);
+        const int pad = padIndex(l0 + i, l1 + j, l2);
+        Vec4* row = buf + pad;
         row[0] += (wij * s.w[2][0]) * qij;
         row[1] += (wij * s.w[2][1]) * (qij + a2);
         row[2] += (wij * s.w[2][2]) * (qij + Real(2) * a2);
+        if constexpr (kMomentum) {
+          const Vec3 rij = r0 + Real(i) * Md.col(0) + Real(j) * Md.col(1);
+          float* node = out.buf + size_t(pad) * stride + size_t(out.channel);
+          for (int k = 0; k < 3; ++k, node += stride) {
+            const Vec3 r = (wij * s.w[2][k]) * (rij + Real(k) * Md.col(2));
+            node[0] += float(r[0]);
+            node[1] += float(r[1]);
+            node[2] += float(r[2]);
+          }
+        }
       }
     }
   }
@@ -53,25 +79,20 @@ void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
   });
 }
 
-/// The extra channels of particles [begin, end): factor * mass into each listed channel, and
-/// at `momentum` (when >= 0) the momentum m (v + C (x_i - x_p)) without P2G's stress term.
-void scatterExtra(const ParticleSet& P, size_t begin, size_t end, const std::vector<std::pair<int, float>>& to,
-                  int momentum, int channels, Real dx, const int origin[3], float* buf) {
+/// factor * mass of particles [begin, end) into each listed extra channel.
+void scatterMassChannels(const ParticleSet& P, size_t begin, size_t end,
+                         const std::vector<std::pair<int, float>>& to, int channels, Real dx, const int origin[3],
+                         float* buf) {
   const Real invDx = Real(1) / dx;
   for (size_t p = begin; p < end; ++p) {
     const QuadraticStencil s(P.x[p] * invDx);
     const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
-    const Mat3 Cdx = dx * P.C[p];
-    const Vec3 v0 = P.v[p] - Cdx * Vec3(s.f[0], s.f[1], s.f[2]); // velocity carried to offset (0,0,0)
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k) {
           const float w = float(s.w[0][i] * s.w[1][j] * s.w[2][k]) * float(P.mass[p]);
           float* node = buf + size_t(padIndex(l0 + i, l1 + j, l2 + k)) * size_t(channels);
           for (const auto& [ch, factor] : to) node[ch] += w * factor;
-          if (momentum < 0) continue;
-          const Vec3 vi = v0 + Cdx * Vec3(Real(i), Real(j), Real(k));
-          for (int d = 0; d < 3; ++d) node[momentum + d] += w * float(vi[d]);
         }
   }
 }
@@ -81,20 +102,22 @@ void scatterExtra(const ParticleSet& P, size_t begin, size_t end, const std::vec
 void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
                   Vec4* buf, float* extra) {
   std::fill(buf, buf + kPadNodes, Vec4::Zero());
+  const int C = grid.extraChannels;
+  if (C > 0) std::fill(extra, extra + size_t(kPadNodes) * size_t(C), 0.f);
   const BlockCoord& bc = grid.topology.coord(b);
   const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
-  for (const MaterialGroup* g : groups) {
-    const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
-    if (begin != end) scatterRange(g->particles, begin, end, Real(1.0 / g->density()), dt, grid.dx, origin, buf);
-  }
-  const int C = grid.extraChannels;
-  if (C <= 0) return;
-  std::fill(extra, extra + size_t(kPadNodes) * size_t(C), 0.f);
   for (size_t gi = 0; gi < groups.size(); ++gi) {
-    const size_t begin = groups[gi]->blockStart[b], end = groups[gi]->blockStart[b + 1];
-    if (begin != end && (!grid.extraOf[gi].empty() || grid.momentumChannel >= 0))
-      scatterExtra(groups[gi]->particles, begin, end, grid.extraOf[gi], grid.momentumChannel, C, grid.dx, origin,
-                   extra);
+    const MaterialGroup& g = *groups[gi];
+    const size_t begin = g.blockStart[b], end = g.blockStart[b + 1];
+    if (begin == end) continue;
+    const Real volumePerMass = Real(1.0 / g.density());
+    if (grid.momentumChannel >= 0)
+      scatterRange<true>(g.particles, begin, end, volumePerMass, dt, grid.dx, origin, buf,
+                         MomentumOut{extra, grid.momentumChannel, C});
+    else
+      scatterRange<false>(g.particles, begin, end, volumePerMass, dt, grid.dx, origin, buf);
+    if (C > 0 && !grid.extraOf[gi].empty())
+      scatterMassChannels(g.particles, begin, end, grid.extraOf[gi], C, grid.dx, origin, extra);
   }
 }
 
