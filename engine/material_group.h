@@ -26,6 +26,9 @@ struct G2PBlock {
   Real dt, dx, invDx;
   const Vec4* old = nullptr; ///< AFLIP: (0, velocity before forces) of the same nodes, else null
   Real flip = 0;             ///< AFLIP blend (SimulationSettings::flip)
+  /// F-bar: the step's mass-weighted mean of the solids' volume change minus one, ΔJ̄ - 1, at the
+  /// same nodes; null when F-bar is off.
+  const Real* meanVolumeChange = nullptr;
 };
 
 /// Per-thread results of a G2P pass.
@@ -69,6 +72,8 @@ public:
   virtual void setRankMinima(const std::vector<double>&) {}
   /// Called once before the first step: e.g. fluids start in hydrostatic equilibrium.
   virtual void initialize(const Vec3d& gravity, double dx) {}
+  /// Whether F-bar (SimulationSettings::fbar) averages this material's volume change (solids).
+  virtual bool averagesVolume() const { return false; }
   /// Gather velocities for particles [begin, end), update deformation, stress and position.
   virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
 

@@ -1,10 +1,13 @@
 #include "engine/simulation.h"
 
+#include "engine/fbar.h"
+
 #include "engine/grid_update.h"
 #include "engine/particle_binning.h"
 #include "engine/transfer_g2p.h"
 #include "engine/transfer_p2g.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -37,6 +40,8 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
       if (periodic_.n[a] % kBlockDim != 0 || std::abs(periodic_.lo[a] * settings_.dx - settings_.domain.min[a]) > 1e-6 * settings_.dx)
         throw std::invalid_argument("a periodic axis needs a domain extent of a multiple of 8 dx from a node");
     }
+  if (settings_.fbar && periodic_.any())
+    throw std::invalid_argument("[simulation] fbar does not work with periodic axes yet");
   int maxIndex = 0;
   for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
   massRemoved_.assign(size_t(maxIndex), 0.0);
@@ -90,6 +95,11 @@ void Simulation::buildColliders() {
   if (settings_.flip > 0) {
     grid_.momentumChannel = channels;
     channels += 3;
+  }
+  // F-bar's channels only when a material averages its volume change (not for water alone).
+  if (settings_.fbar && std::any_of(groupPtrs_.begin(), groupPtrs_.end(), [](const MaterialGroup* g) { return g->averagesVolume(); })) {
+    grid_.fbarChannel = channels;
+    channels += 2;
   }
   grid_.extraChannels = channels;
   if (!channels) grid_.extraOf.clear();
@@ -160,6 +170,10 @@ double Simulation::step(double dtCap) {
   if (ranks_) {
     ScopedTimer t(times_.halo);
     reduceLoads(rdt);
+  }
+  if (grid_.fbarChannel >= 0) {
+    ScopedTimer t(times_.g2p);
+    averageVolumeChange(groupPtrs_, grid_, rdt);
   }
   G2PStats stats;
   {

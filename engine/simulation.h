@@ -53,6 +53,10 @@ struct SimulationSettings {
   /// v_PIC + flip (v_p - v_old at p), carrying back a share of what the grid's interpolation
   /// removed; positions still move with v_PIC. 0 is pure APIC (the default); costs 3 grid channels.
   double flip = 0;
+  /// F-bar (engine/fbar.h): each solid particle's volume change per step is the grid's
+  /// mass-weighted average around it, not its own; against volumetric locking of plastic flow.
+  /// Costs a gather and a scatter pass over the solids and 2 grid channels; one process, no periodic axes.
+  bool fbar = false;
   Vec3d origin = Vec3d::Zero();     ///< world coordinates of the local frame's origin
   DomainBox domain;                 ///< local frame
   /// Contact law of each face of the domain box (x_min, x_max, y_min, y_max, z_min, z_max);

@@ -68,6 +68,7 @@ std::vector<std::pair<BlockCoord, const char*>> recordsInTreeOrder(const std::ve
 void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance,
                             const std::vector<std::vector<uint64_t>>* seedIndex) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
+  if (settings_.fbar) throw std::invalid_argument("[simulation] fbar does not run on several ranks yet (run without mpirun)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
   if (!seedIndex) {
     // Every rank holds every particle here: the same binning everywhere gives the same ranges.

@@ -26,6 +26,8 @@ struct SparseGrid {
   /// First of 3 channels holding every particle's APIC momentum without the stress term (the grid
   /// velocity before forces, which the AFLIP blend's increment needs), or -1 when that is off.
   int momentumChannel = -1;
+  /// First of 2 channels F-bar fills between the grid update and G2P (engine/fbar.h), or -1.
+  int fbarChannel = -1;
 
   size_t blockCount() const { return topology.size(); }
   Vec4* block(uint32_t b) { return nodes.data() + size_t(b) * kBlockNodes; }

@@ -1,5 +1,6 @@
 #include "engine/transfer_g2p.h"
 
+#include "engine/fbar.h"
 #include "engine/sparse_grid.h"
 
 #include <tbb/combinable.h>
@@ -30,6 +31,7 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
   const bool aflip = flip > Real(0) && grid.momentumChannel >= 0;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.owning.size(), 1), [&](const auto& r) {
     std::vector<Vec4> buf(kPadNodes), old(aflip ? kPadNodes : 0);
+    std::vector<Real> meanChange(grid.fbarChannel >= 0 ? kPadNodes : 0);
     G2PStats& st = stats.local();
     for (size_t o = r.begin(); o != r.end(); ++o) {
       const uint32_t b = grid.owning[o];
@@ -45,6 +47,10 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
         copyOldVelocities(grid, up, old.data());
         blk.old = old.data();
         blk.flip = flip;
+      }
+      if (grid.fbarChannel >= 0) {
+        copyMeanVolumeChange(grid, up, meanChange.data());
+        blk.meanVolumeChange = meanChange.data();
       }
       for (MaterialGroup* g : groups) {
         const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];

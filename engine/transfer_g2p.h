@@ -19,42 +19,77 @@ inline Vec3 gatherOld(const Vec4* at, const QuadraticStencil& s) {
   return v.tail<3>();
 }
 
-/// Gathers v and C for particles [begin, end), lets `update(i, C)` advance the material state
-/// (deformation, return mapping, Kirchhoff stress), then advects x with the new velocity.
+/// The grid velocity and its gradient (APIC's C) at a particle with stencil s, whose first node is
+/// padded node (l0, l1, l2) of `nodes`.
+inline void gatherVelocity(const Vec4* nodes, const QuadraticStencil& s, int l0, int l1, int l2, Real invDx,
+                           Vec3& vel, Mat3& C) {
+  const Real cScale = Real(4) * invDx; // D^-1 = 4/dx^2, times dx from the stencil offsets
+  // Node records are (mass, vx, vy, vz); the first lane accumulates junk and is ignored.
+  Vec4 v = Vec4::Zero(), bi = Vec4::Zero(), bj = Vec4::Zero(), bk = Vec4::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Real wij = s.w[0][i] * s.w[1][j];
+      const Vec4* row = nodes + padIndex(l0 + i, l1 + j, l2);
+      const Vec4 w0 = (wij * s.w[2][0]) * row[0];
+      const Vec4 w1 = (wij * s.w[2][1]) * row[1];
+      const Vec4 w2 = (wij * s.w[2][2]) * row[2];
+      const Vec4 sum = w0 + w1 + w2;
+      v += sum;
+      bi += Real(i) * sum;
+      bj += Real(j) * sum;
+      bk += w1 + Real(2) * w2;
+    }
+  vel = v.tail<3>();
+  C.col(0) = cScale * (bi.tail<3>() - s.f[0] * vel);
+  C.col(1) = cScale * (bj.tail<3>() - s.f[1] * vel);
+  C.col(2) = cScale * (bk.tail<3>() - s.f[2] * vel);
+}
+
+/// The interpolated scalar of padded nodes `at` (the stencil's first node) under stencil s.
+inline Real gatherScalar(const Real* at, const QuadraticStencil& s) {
+  Real v = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Real* row = at + padIndex(i, j, 0);
+      v += (s.w[0][i] * s.w[1][j]) * (s.w[2][0] * row[0] + s.w[2][1] * row[1] + s.w[2][2] * row[2]);
+    }
+  return v;
+}
+
+/// det(I + A) - 1, without the cancellation of forming det(I + A) in float first.
+inline double volumeChangeMinusOne(const Mat3d& A) {
+  const double t = A.trace();
+  return t + 0.5 * (t * t - (A * A).trace()) + A.determinant();
+}
+
+/// F-bar's factor ((1 + mean) / ΔJ)^(1/3) on a particle's deformation increment I + dt C, with ΔJ
+/// its own volume change and `mean` the mass-weighted mean of ΔJ - 1 around it (1 when degenerate).
+inline double fbarScale(const Mat3& C, Real dt, double mean) {
+  const double own = volumeChangeMinusOne(double(dt) * C.cast<double>());
+  if (!(own > -1) || !(mean > -1)) return 1;
+  return std::exp((std::log1p(mean) - std::log1p(own)) / 3);
+}
+
+/// Gathers v and C for particles [begin, end), lets `update(i, C, s)` advance the material state
+/// (deformation, return mapping, Kirchhoff stress; s is F-bar's scale of the step's deformation
+/// increment, 1 when that is off), then advects x with the new velocity.
 template <class UpdateFn>
 inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, size_t end,
                             G2PStats& stats, UpdateFn&& update) {
   const Real invDx = blk.invDx, dt = blk.dt;
-  const Real cScale = Real(4) * invDx; // D^-1 = 4/dx^2, times dx from the stencil offsets
   Real maxSpeed2 = stats.maxSpeed * stats.maxSpeed;
   for (size_t p = begin; p < end; ++p) {
     const QuadraticStencil s(P.x[p] * invDx);
     const int l0 = s.base[0] - blk.origin[0], l1 = s.base[1] - blk.origin[1],
               l2 = s.base[2] - blk.origin[2];
-    // Node records are (mass, vx, vy, vz); the first lane accumulates junk and is ignored.
-    Vec4 v = Vec4::Zero(), bi = Vec4::Zero(), bj = Vec4::Zero(), bk = Vec4::Zero();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        const Real wij = s.w[0][i] * s.w[1][j];
-        const Vec4* row = blk.nodes + padIndex(l0 + i, l1 + j, l2);
-        const Vec4 w0 = (wij * s.w[2][0]) * row[0];
-        const Vec4 w1 = (wij * s.w[2][1]) * row[1];
-        const Vec4 w2 = (wij * s.w[2][2]) * row[2];
-        const Vec4 sum = w0 + w1 + w2;
-        v += sum;
-        bi += Real(i) * sum;
-        bj += Real(j) * sum;
-        bk += w1 + Real(2) * w2;
-      }
-    const Vec3 vel = v.tail<3>();
+    Vec3 vel;
     Mat3 C;
-    C.col(0) = cScale * (bi.tail<3>() - s.f[0] * vel);
-    C.col(1) = cScale * (bj.tail<3>() - s.f[1] * vel);
-    C.col(2) = cScale * (bk.tail<3>() - s.f[2] * vel);
+    gatherVelocity(blk.nodes, s, l0, l1, l2, invDx, vel, C);
     if (blk.old) P.v[p] = vel + blk.flip * (P.v[p] - gatherOld(blk.old + padIndex(l0, l1, l2), s));
     else P.v[p] = vel;
     P.C[p] = C;
-    update(p, C);
+    update(p, C, blk.meanVolumeChange ? fbarScale(C, dt, double(gatherScalar(blk.meanVolumeChange + padIndex(l0, l1, l2), s)))
+                                      : 1.0);
     P.x[p] += dt * vel; // with the PIC velocity also under AFLIP (Fei et al. 2021)
     // x - x is 0 for finite x and NaN otherwise: one test catches a bad stress in this step.
     const Sym3& t = P.tau[p];

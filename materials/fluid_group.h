@@ -29,7 +29,7 @@ public:
   void gridToParticles(const G2PBlock& blk, size_t begin, size_t end, G2PStats& stats) override {
     const double dt = blk.dt;
     float minDJ = 0;
-    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C) {
+    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C, double) {
       model.update(dJ[p], C, dt, particles.tau[p]);
       minDJ = std::min(minDJ, dJ[p]);
     });

@@ -21,10 +21,13 @@ public:
   const char* modelName() const override { return Model::kName; }
   double waveSpeed() const override { return model.waveSpeed(density()); }
 
+  bool averagesVolume() const override { return true; }
+
   void gridToParticles(const G2PBlock& blk, size_t begin, size_t end, G2PStats& stats) override {
     const double dt = blk.dt;
-    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C) {
-      const Mat3d Ftrial = (Mat3d::Identity() + dt * C.template cast<double>()) * F[p].template cast<double>();
+    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C, double fbar) {
+      const Mat3d Ftrial =
+          (fbar * (Mat3d::Identity() + dt * C.template cast<double>())) * F[p].template cast<double>();
       updateSolid(model, Ftrial, state[p], F[p], particles.tau[p], dt);
     });
   }

@@ -183,7 +183,7 @@ TEST(Kernels, G2PCountsANonFiniteStressInTheStepThatMadeIt) {
   G2PStats stats;
   const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
   ASSERT_GT(end, begin + 1);
-  gatherParticles(blk, g->particles, begin, end, stats, [&](size_t p, const Mat3&) {
+  gatherParticles(blk, g->particles, begin, end, stats, [&](size_t p, const Mat3&, double) {
     g->particles.tau[p] = Sym3{};
     if (p == begin + 1) g->particles.tau[p].xz = std::numeric_limits<Real>::quiet_NaN();
   });

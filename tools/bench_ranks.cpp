@@ -21,7 +21,7 @@ int runRankBenchmarks(const BenchOptions& opt, const std::shared_ptr<Communicato
     std::printf("(mpi%%: time in MPI calls, waiting included, on the slowest rank; halo%%: the phase only ranks\n"
                 " run: migration, the P2G scatter of boundary blocks ahead of the exchange, the exchange)\n");
   for (const std::string& name : opt.cases) {
-    SceneSetup s = benchmarkScene(name, opt.scale, opt.flip);
+    SceneSetup s = benchmarkScene(name, opt);
     Simulation sim(s.settings, std::move(s.groups));
     sim.distribute(ranks);
     for (int i = 0; i < opt.warmup; ++i) sim.step();

@@ -176,15 +176,17 @@ std::vector<std::string> benchmarkCaseNames() {
   return n;
 }
 
-SceneSetup benchmarkScene(const std::string& name, double scale, double flip) {
+SceneSetup benchmarkScene(const std::string& name, const BenchOptions& opt) {
   auto it = cases().find(name);
   if (it == cases().end()) throw std::runtime_error("unknown benchmark case '" + name + "'");
   const Case& c = it->second;
   char dxs[32], flips[48];
-  std::snprintf(dxs, sizeof dxs, "%.6g", c.dx / std::cbrt(scale));
-  std::snprintf(flips, sizeof flips, "simulation.flip=%.6g", flip);
-  return c.toml.empty() ? loadSceneString(defaultSceneText(), "bench:" + name, {"simulation.dx=" + std::string(dxs), flips})
-                        : loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name, {flips});
+  std::snprintf(dxs, sizeof dxs, "%.6g", c.dx / std::cbrt(opt.scale));
+  std::snprintf(flips, sizeof flips, "simulation.flip=%.6g", opt.flip);
+  std::vector<std::string> set{flips, std::string("simulation.fbar=") + (opt.fbar ? "true" : "false")};
+  if (!c.toml.empty()) return loadSceneString(substitute(c.toml, "%DX%", dxs), "bench:" + name, set);
+  set.push_back("simulation.dx=" + std::string(dxs));
+  return loadSceneString(defaultSceneText(), "bench:" + name, set);
 }
 
 namespace {
@@ -245,7 +247,7 @@ std::vector<BenchResult> measureBenchmarks(const BenchOptions& opt, bool print) 
     double oneThread = 0;
     for (int threads : opt.threads) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-      SceneSetup s = benchmarkScene(name, opt.scale, opt.flip);
+      SceneSetup s = benchmarkScene(name, opt);
       Simulation sim(s.settings, std::move(s.groups));
       BenchResult r = timeSteps(name, sim, threads, opt.warmup, opt.steps);
       const double pss = r.particleStepsPerSecond;

@@ -17,6 +17,7 @@ struct BenchOptions {
   int warmup = 5;
   double scale = 1; ///< multiplies the particle count (approximately)
   double flip = 0;  ///< AFLIP blend of every case ([simulation] flip; 0: APIC)
+  bool fbar = false; ///< F-bar in every case ([simulation] fbar)
 };
 
 /// One benchmark measurement.
@@ -33,9 +34,9 @@ struct BenchResult {
 };
 
 std::vector<std::string> benchmarkCaseNames();
-/// The scene of a benchmark case, its particle count multiplied by about `scale`, with the
-/// AFLIP blend `flip`.
-SceneSetup benchmarkScene(const std::string& name, double scale, double flip = 0);
+/// The scene of a benchmark case, its particle count multiplied by about opt.scale, with opt's
+/// AFLIP blend and F-bar.
+SceneSetup benchmarkScene(const std::string& name, const BenchOptions& opt);
 
 /// `mpirun -np N talus bench --ranks`: each case distributed over the N ranks (threads per rank:
 /// the first of options.threads); rank 0 prints throughput, communication time and bytes.

@@ -146,6 +146,9 @@ int main(int argc, char** argv) {
   wpCmd->add_option("--ppc", singleRes.particlesPerCell, "Particles per cell for --single (8)")->check(CLI::Range(1, 64));
   wpCmd->add_option("--cfl", singleRes.cfl, "CFL number for --single (0.4)")->check(CLI::Range(0.01, 1.0));
   wpCmd->add_option("--flip", singleRes.flip, "AFLIP blend for --single (0: APIC)")->check(CLI::Range(0.0, 1.0));
+  wpCmd->add_flag("--fbar", singleRes.fbar, "F-bar for --single");
+  wpCmd->add_option("--bed-offset", singleRes.bedOffset, "Column collapses: bed raised by this many cells (--single)")
+      ->check(CLI::Range(0.0, 1.0));
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
@@ -154,6 +157,7 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
   benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
   benchCmd->add_option("--flip", bench.flip, "AFLIP blend of every case (0: APIC)")->check(CLI::Range(0.0, 1.0));
+  benchCmd->add_flag("--fbar", bench.fbar, "F-bar in every case");
   bool benchRanks = false;
   benchCmd->add_flag("--ranks", benchRanks,
                      "Under mpirun: distribute each case over the ranks (threads per rank: the first --threads)");

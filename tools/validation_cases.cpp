@@ -144,6 +144,7 @@ max = [1.0, %.9g, %.9g]
 
 ColumnCollapseResult columnCollapse(double aspect, const Resolution& r, GranularModel model) {
   const double L0 = 0.2, dx = L0 / r.cells, H = aspect * L0;
+  const double bed = r.bedOffset * dx; // 0: the bed on a node plane, as the tables are
   const double reach = L0 * (2.5 + 2.5 * std::pow(aspect, 2.0 / 3.0));
   const char* material = model == GranularModel::MuI ? R"(model = "mu_i"
 mu_s = 0.6249
@@ -163,7 +164,7 @@ min = [0, 0, 0]
 max = [%.9g, %.9g, %.9g]
 walls = "slip"
 [terrain]
-plane = { point = [0, 0, 0], normal = [0, 0, 1] }
+plane = { point = [0, 0, %.9g], normal = [0, 0, 1] }
 boundary = "friction"
 friction = 0.625
 [[materials]]
@@ -175,9 +176,9 @@ poisson_ratio = 0.3
 [[bodies]]
 material = "sand"
 shape = "box"
-min = [0, 0, 0]
+min = [0, 0, %.9g]
 max = [%.9g, %.9g, %.9g]
-)", dx, reach, 2 * dx, 1.1 * H, material, L0, 2 * dx, H);
+)", dx, reach, 2 * dx, 1.1 * H + bed, bed, material, bed, L0, 2 * dx, bed + H);
   ColumnCollapseResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();

@@ -13,6 +13,8 @@ struct Resolution {
   int particlesPerCell = 8;
   double cfl = 0.4;
   double flip = 0; ///< AFLIP blend (0: APIC)
+  bool fbar = false; ///< F-bar ([simulation] fbar)
+  double bedOffset = 0; ///< column collapse: its bed raised by this many cells off the node plane
 };
 
 /// What every run reports, besides its error.

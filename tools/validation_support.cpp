@@ -13,7 +13,8 @@ std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, 
   SceneSetup s = loadSceneString(toml, "validation.toml",
                                  {"simulation.particles_per_cell=" + std::to_string(r.particlesPerCell),
                                   "simulation.cfl=" + std::to_string(r.cfl),
-                                  "simulation.flip=" + std::to_string(r.flip)});
+                                  "simulation.flip=" + std::to_string(r.flip),
+                                  std::string("simulation.fbar=") + (r.fbar ? "true" : "false")});
   auto sim = std::make_unique<Simulation>(s.settings, std::move(s.groups));
   cost.particles = sim->particleCount();
   return sim;

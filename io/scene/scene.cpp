@@ -34,6 +34,7 @@ void readSimulation(const ConfigTable& root, SceneSetup& s) {
   s.settings.gravityRamp = sim->positive("gravity_ramp", 0, true);
   s.settings.damping = sim->positive("damping", 0, true);
   s.settings.flip = sim->inRange("flip", 0, 0, 1);
+  s.settings.fbar = sim->boolean("fbar", false);
   s.maxParticles = std::min(sim->positive("max_particles", 2e9), resourceLimits().maxParticles);
 }
 

@@ -1,0 +1,77 @@
+#include "engine/fbar.h"
+
+#include "engine/bspline.h"
+#include "engine/transfer_g2p.h"
+
+#include <tbb/parallel_for.h>
+
+namespace talus {
+
+namespace {
+
+/// m (ΔJ - 1) and m of particles [begin, end) into the padded two-channel buffer `sums`.
+void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const Vec4* nodes, const int origin[3],
+                         Real dt, Real invDx, float* sums) {
+  for (size_t p = begin; p < end; ++p) {
+    const QuadraticStencil s(P.x[p] * invDx);
+    const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
+    Vec3 vel;
+    Mat3 C;
+    gatherVelocity(nodes, s, l0, l1, l2, invDx, vel, C);
+    const Real change = Real(volumeChangeMinusOne(double(dt) * C.cast<double>()));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        float* row = sums + 2 * size_t(padIndex(l0 + i, l1 + j, l2));
+        for (int k = 0; k < 3; ++k) {
+          const Real w = s.w[0][i] * s.w[1][j] * s.w[2][k] * P.mass[p];
+          row[2 * k] += float(w * change);
+          row[2 * k + 1] += float(w);
+        }
+      }
+  }
+}
+
+} // namespace
+
+void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
+  const size_t C = size_t(grid.extraChannels), ch = size_t(grid.fbarChannel);
+  const Real invDx = Real(1) / grid.dx;
+  for (int colour = 0; colour < 8; ++colour) {
+    const auto& blocks = grid.colours[size_t(colour)];
+    // Blocks of one colour never reach the same node; they read velocities and write only the channels.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const auto& r) {
+      std::vector<Vec4> nodes(kPadNodes);
+      std::vector<float> sums(2 * size_t(kPadNodes));
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        const uint32_t b = blocks[c];
+        const auto& up = grid.topology.upper(b);
+        forEachPaddedRow([&](int d, int pad, int node, int n) {
+          std::copy_n(grid.block(uint32_t(up[d])) + node, n, nodes.data() + pad);
+        });
+        std::fill(sums.begin(), sums.end(), 0.f);
+        const BlockCoord& bc = grid.topology.coord(b);
+        const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
+        for (const MaterialGroup* g : groups) {
+          const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
+          if (begin != end && g->averagesVolume())
+            scatterVolumeChange(g->particles, begin, end, nodes.data(), origin, dt, invDx, sums.data());
+        }
+        forEachPaddedRow([&](int d, int pad, int node, int n) {
+          float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
+          const float* in = sums.data() + 2 * size_t(pad);
+          for (int k = 0; k < n; ++k, out += C, in += 2) out[0] += in[0], out[1] += in[1];
+        });
+      }
+    });
+  }
+}
+
+void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out) {
+  const size_t C = size_t(grid.extraChannels), ch = size_t(grid.fbarChannel);
+  forEachPaddedRow([&](int d, int pad, int node, int n) {
+    const float* in = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
+    for (int k = 0; k < n; ++k, in += C) out[pad + k] = in[1] > 0.f ? Real(in[0] / in[1]) : Real(0);
+  });
+}
+
+} // namespace talus

@@ -1,0 +1,26 @@
+// F-bar (de Souza Neto et al. 1996; in MPM, Coombs et al. 2018 and the ΔJ-bar of Zhao et al. 2023):
+// a pass between the grid update and G2P that averages the step's volume change of the solids over
+// the grid, so that a particle's deformation increment takes its deviatoric part from its own
+// velocity gradient and its volumetric part from that average. An isochoric plastic flow (the
+// Drucker–Prager return keeps volume) then no longer has to hold ∇·v = 0 at every particle, the
+// over-constraint (volumetric locking) that stiffens flow on coarse grids.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/sparse_grid.h"
+
+#include <array>
+#include <vector>
+
+namespace talus {
+
+/// Scatters, for the particles of every group that averagesVolume(), m (ΔJ - 1) and m into the
+/// two extra channels from grid.fbarChannel, ΔJ = det(I + dt C) with C gathered from the updated
+/// grid velocities. Colour by colour, per-block buffers: the same sums at any thread count.
+void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
+
+/// The mean ΔJ - 1 of the padded neighbourhood of a block (`up`: it and its 7 upper neighbours),
+/// 0 where no solid reached a node, in padIndex order (G2PBlock::meanVolumeChange).
+void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out);
+
+} // namespace talus
