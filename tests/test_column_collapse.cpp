@@ -46,9 +46,12 @@ TEST(ColumnCollapse, RunOutWithinTenPercentOfTheNearerLawAtAspectRatiosTwoAndTen
   }
 }
 
-// Convergence at coarse cost: the low column's run-out at 16 and 24 cells within 3% of each
-// other (measured 0.500 and 0.500), and its height unchanged (a = 0.5: the top stays intact).
-TEST(ColumnCollapse, LowColumnRunOutConvergesWithinThreePercent) {
+// The low column's continuous deposit (Lube's 0.025 L0 threshold) at 16 and 24 cells within 3% of
+// each other (measured 0.500 and 0.500), and its height unchanged (a = 0.5: the top stays intact).
+// This guards the measure as the tables define it, not convergence: 0.025 L0 is one particle layer
+// at 20 cells, so one layer counts at 16 cells and not at 24; counting half a layer at both gives
+// 0.500 and 0.542, and 99 % of the volume moves 0.378 -> 0.440 -> 0.465 at 32 cells (docs/convergence.md §2).
+TEST(ColumnCollapse, LowColumnContinuousDepositHoldsWithinThreePercentFrom16To24Cells) {
   const ColumnCollapseResult c = columnCollapse(0.5, {16, 8, 0.4}), f = columnCollapse(0.5, {24, 8, 0.4});
   print(0.5, 16, c);
   print(0.5, 24, f);

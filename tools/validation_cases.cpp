@@ -4,6 +4,7 @@
 #include "engine/simulation.h"
 #include "io/scene/scene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
@@ -187,6 +188,9 @@ max = [%.9g, %.9g, %.9g]
   const double spacing = dx / std::cbrt(double(r.particlesPerCell));
   res.runOut = (contiguousFront(*sim, spacing, 2 * dx, 0.025 * L0) - L0) / L0;
   res.runOutAcrossCell = (contiguousFront(*sim, spacing, 2 * dx, 0.025 * L0, dx) - L0) / L0;
+  // 0.025 L0 is one particle layer (the spacing) at 20 cells: below that one layer counts, above
+  // it two are needed. Half a layer at every dx counts the same deposit at every resolution.
+  res.runOutAnyLayer = (contiguousFront(*sim, spacing, 2 * dx, 0.5 * spacing) - L0) / L0;
   const double small = 1.2 * aspect, large = 1.9 * std::pow(aspect, 2.0 / 3.0);
   res.lubeLow = aspect <= 2.8 ? small : large, res.lubeHigh = aspect < 1.8 ? small : large;
   if (res.lubeLow > res.lubeHigh) std::swap(res.lubeLow, res.lubeHigh);
@@ -197,12 +201,22 @@ max = [%.9g, %.9g, %.9g]
   // Height: the thickest bin one cell wide; farthest: the farthest particle.
   const double ox = sim->settings().origin.x();
   std::map<int, double> volume;
-  double xMax = 0;
+  std::vector<std::pair<double, double>> byX; // (x, volume) per particle
+  double xMax = 0, total = 0;
   for (const auto* g : sim->groups())
     for (size_t i = 0; i < g->size(); ++i) {
-      const double x = double(g->particles.x[i].x()) + ox;
-      volume[int(std::floor(x / dx))] += double(g->particles.mass[i]) / g->density();
+      const double x = double(g->particles.x[i].x()) + ox, v = double(g->particles.mass[i]) / g->density();
+      volume[int(std::floor(x / dx))] += v;
+      byX.push_back({x, v});
+      total += v;
       xMax = std::max(xMax, x);
+    }
+  std::sort(byX.begin(), byX.end());
+  double behind = 0;
+  for (const auto& [x, v] : byX)
+    if ((behind += v) >= 0.99 * total) {
+      res.runOut99 = (x - L0) / L0;
+      break;
     }
   for (const auto& [b, v] : volume) res.finalHeight = std::max(res.finalHeight, v / (dx * 2 * dx) / L0);
   res.referenceHeight = aspect <= 1.15 ? aspect : std::pow(aspect, 0.4);

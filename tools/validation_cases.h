@@ -99,6 +99,8 @@ struct ColumnCollapseResult : RunCost {
   double lajeunesse = 0;    ///< the second law
   double runOutAcrossCell = 0; ///< the same deposit allowing gaps up to a cell (measure study)
   double farthest = 0;      ///< farthest particle, (x_max - L0)/L0: what a threshold-free measure gives
+  double runOutAnyLayer = 0; ///< the continuous deposit at least half a particle layer thick (any dx)
+  double runOut99 = 0;      ///< (x_99 - L0)/L0, 99 % of the deposit's volume behind x_99: blind to stray fragments
   double finalHeight = 0, referenceHeight = 0; ///< H_inf/L0: the thickest cell-wide bin; Lube's law
   double finalRmsSpeed = 0, collapseSpeedScale = 0;
 };

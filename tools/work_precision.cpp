@@ -124,7 +124,8 @@ std::vector<Case> cases(const std::string& shared) {
                                 (r.lubeLow < r.lubeHigh ? fmt(" (Lube %.3g", r.lubeLow) + fmt("–%.3g", r.lubeHigh)
                                                         : fmt(" (Lube %.3g", r.reference)) +
                                 fmt(", Lajeunesse %.3g)", r.lajeunesse) + fmt(", across a cell %.3g", r.runOutAcrossCell) +
-                                fmt(", farthest particle %.3g", r.farthest) + fmt("; height %.3g", r.finalHeight) +
+                                fmt(", farthest particle %.3g", r.farthest) + fmt(", 99 %% of the volume %.3g", r.runOut99) + fmt(", half a layer %.3g", r.runOutAnyLayer) +
+                                fmt("; height %.3g", r.finalHeight) +
                                 fmt(" (Lube %.3g)", r.referenceHeight);
                      return p;
                    },
