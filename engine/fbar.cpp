@@ -45,9 +45,7 @@ void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& 
       for (size_t c = r.begin(); c != r.end(); ++c) {
         const uint32_t b = blocks[c];
         const auto& up = grid.topology.upper(b);
-        forEachPaddedRow([&](int d, int pad, int node, int n) {
-          std::copy_n(grid.block(uint32_t(up[d])) + node, n, nodes.data() + pad);
-        });
+        copyPaddedNodes(grid, up, nodes.data());
         std::fill(sums.begin(), sums.end(), 0.f);
         const BlockCoord& bc = grid.topology.coord(b);
         const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};

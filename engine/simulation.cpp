@@ -1,7 +1,6 @@
 #include "engine/simulation.h"
 
 #include "engine/fbar.h"
-
 #include "engine/grid_update.h"
 #include "engine/particle_binning.h"
 #include "engine/transfer_g2p.h"

@@ -26,6 +26,10 @@ void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up,
 
 } // namespace
 
+void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out) {
+  forEachPaddedRow([&](int d, int pad, int node, int n) { std::copy_n(grid.block(uint32_t(up[d])) + node, n, out + pad); });
+}
+
 G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip) {
   tbb::combinable<G2PStats> stats;
   const bool aflip = flip > Real(0) && grid.momentumChannel >= 0;
@@ -37,9 +41,7 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
       const uint32_t b = grid.owning[o];
       // Copy the padded neighbourhood once; the per-particle loop then indexes it densely.
       const auto& up = grid.topology.upper(b);
-      forEachPaddedRow([&](int d, int pad, int node, int n) {
-        std::copy_n(grid.block(uint32_t(up[d])) + node, n, buf.data() + pad);
-      });
+      copyPaddedNodes(grid, up, buf.data());
       const BlockCoord& c = grid.topology.coord(b);
       G2PBlock blk{buf.data(), {c.x * kBlockDim, c.y * kBlockDim, c.z * kBlockDim}, dt, grid.dx,
                    Real(1) / grid.dx};
