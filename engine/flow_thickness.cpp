@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 namespace talus {
 
 namespace {
@@ -22,79 +24,104 @@ static BlockCoord lineBlock(const BlockCoord& c, int axis) {
 
 uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) { return blockKey(lineBlock(c, axis)); }
 
-void FlowColumns::clear() {
-  for (auto& l : lines_) l.clear();
-}
-
-void FlowColumns::addBlock(const BlockCoord& c, const float* volume, const float* mass) {
-  Line* L[3] = {nullptr, nullptr, nullptr};
-  for (int n = 0; n < kBlockNodes; ++n) {
-    const float v = volume[n];
-    if (!(v > 0)) continue;
-    for (int a = 0; a < 3; ++a) {
-      if (!L[a]) {
-        L[a] = &lines_[a][lineKey(c, a)];
-        L[a]->at = lineBlock(c, a);
-      }
-      L[a]->volume[lineIndex(n, a)] += v;
-      L[a]->mass[lineIndex(n, a)] += mass[n];
-    }
-  }
-}
-
-void FlowColumns::finish() {
-  for (int a = 0; a < 3; ++a) dilate(a);
-}
-
 void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
-  clear();
-  const int C = grid.extraChannels;
-  float volume[kBlockNodes], mass[kBlockNodes];
-  // Serial in block order: the sums are the same at any thread count.
-  for (uint32_t b = 0; b < grid.blockCount(); ++b) {
-    const Vec4* nodes = grid.block(b);
-    const float* extra = grid.blockExtra(b);
-    for (int n = 0; n < kBlockNodes; ++n) {
-      volume[n] = extra[size_t(n) * size_t(C) + size_t(volumeChannel)];
-      mass[n] = float(nodes[n][0]);
-    }
-    addBlock(grid.topology.coord(b), volume, mass);
-  }
-  finish();
+  scratch_.clear();
+  const size_t C = size_t(grid.extraChannels);
+  for (uint32_t b = 0; b < grid.blockCount(); ++b)
+    scratch_.push_back({grid.topology.coord(b), grid.blockExtra(b) + volumeChannel, C, grid.block(b)->data(), 4});
+  build(scratch_);
 }
 
-void FlowColumns::dilate(int axis) {
+void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
+  const size_t N = blocks.size();
+  std::vector<uint8_t> flow(N);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 16), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const BlockFlow& f = blocks[i];
+      bool any = false;
+      for (int n = 0; n < kBlockNodes; ++n) any |= f.volume[size_t(n) * f.volumeStride] > 0;
+      flow[i] = any;
+    }
+  });
+  // Which line each block with flow adds to, in the list's order (serial: a few hundred blocks).
+  std::vector<uint32_t> lineOf(N);
+  std::array<size_t, 4> offset{}; // lines of axes < a come first in the parallel passes
+  for (int a = 0; a < 3; ++a) {
+    auto& index = index_[a];
+    index.clear();
+    for (size_t i = 0; i < N; ++i)
+      if (flow[i]) lineOf[i] = index.try_emplace(lineKey(blocks[i].c, a), uint32_t(index.size())).first->second;
+    const size_t nl = index.size();
+    auto& first = first_[a];
+    first.assign(nl + 1, 0);
+    for (size_t i = 0; i < N; ++i)
+      if (flow[i]) ++first[lineOf[i] + 1];
+    for (size_t l = 0; l < nl; ++l) first[l + 1] += first[l];
+    members_[a].resize(first[nl]);
+    std::vector<uint32_t> at(first.begin(), first.end() - 1);
+    for (size_t i = 0; i < N; ++i)
+      if (flow[i]) members_[a][at[lineOf[i]]++] = uint32_t(i);
+    lines_[a].resize(nl);
+    offset[size_t(a) + 1] = offset[size_t(a)] + nl;
+  }
+  auto forEachLine = [&](auto&& f) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, offset[3], 4), [&](const auto& r) {
+      for (size_t t = r.begin(); t != r.end(); ++t) {
+        const int a = t < offset[1] ? 0 : t < offset[2] ? 1 : 2;
+        f(a, t - offset[size_t(a)]);
+      }
+    });
+  };
+  forEachLine([&](int a, size_t l) {
+    Line& L = lines_[a][l];
+    std::fill(std::begin(L.volume), std::end(L.volume), 0.f);
+    std::fill(std::begin(L.mass), std::end(L.mass), 0.f);
+    L.at = lineBlock(blocks[members_[a][first_[a][l]]].c, a);
+    for (uint32_t m = first_[a][l]; m < first_[a][l + 1]; ++m) {
+      const BlockFlow& f = blocks[members_[a][m]];
+      for (int n = 0; n < kBlockNodes; ++n) {
+        const float v = f.volume[size_t(n) * f.volumeStride];
+        if (!(v > 0)) continue;
+        const int i = lineIndex(n, a);
+        L.volume[i] += v;
+        L.mass[i] += float(f.mass[size_t(n) * f.massStride]);
+      }
+    }
+  });
+  forEachLine([&](int a, size_t l) { dilate(a, l); });
+}
+
+void FlowColumns::dilate(int axis, size_t index) {
   // In-plane coordinates of a line block: (y, z), (x, z) or (x, y), as lineIndex orders them.
   auto coord = [axis](BlockCoord& c, int d) -> int32_t& { return d == 0 ? (axis == 0 ? c.y : c.x) : (axis == 2 ? c.y : c.z); };
-  for (auto& [key, line] : lines_[axis]) {
-    const Line* nb[3][3];
-    for (int du = -1; du <= 1; ++du)
-      for (int dv = -1; dv <= 1; ++dv) {
-        BlockCoord c = line.at;
-        coord(c, 0) += du, coord(c, 1) += dv;
-        const auto it = lines_[axis].find(blockKey(c));
-        nb[du + 1][dv + 1] = it == lines_[axis].end() ? nullptr : &it->second;
-      }
-    for (int u = 0; u < kBlockDim; ++u)
-      for (int v = 0; v < kBlockDim; ++v) {
-        float w = 0;
-        for (int du = -1; du <= 1; ++du)
-          for (int dv = -1; dv <= 1; ++dv) {
-            const int U = u + du, V = v + dv;
-            const int bu = U < 0 ? 0 : U >= kBlockDim ? 2 : 1, bv = V < 0 ? 0 : V >= kBlockDim ? 2 : 1;
-            if (const Line* l = nb[bu][bv])
-              w = std::max(w, l->volume[((U + kBlockDim) % kBlockDim) * kBlockDim + (V + kBlockDim) % kBlockDim]);
-          }
-        line.widest[u * kBlockDim + v] = w;
-      }
-  }
+  Line& line = lines_[axis][index];
+  const Line* nb[3][3];
+  for (int du = -1; du <= 1; ++du)
+    for (int dv = -1; dv <= 1; ++dv) {
+      BlockCoord c = line.at;
+      coord(c, 0) += du, coord(c, 1) += dv;
+      const auto it = index_[axis].find(blockKey(c));
+      nb[du + 1][dv + 1] = it == index_[axis].end() ? nullptr : &lines_[axis][it->second];
+    }
+  for (int u = 0; u < kBlockDim; ++u)
+    for (int v = 0; v < kBlockDim; ++v) {
+      float w = 0;
+      for (int du = -1; du <= 1; ++du)
+        for (int dv = -1; dv <= 1; ++dv) {
+          const int U = u + du, V = v + dv;
+          const int bu = U < 0 ? 0 : U >= kBlockDim ? 2 : 1, bv = V < 0 ? 0 : V >= kBlockDim ? 2 : 1;
+          if (const Line* l = nb[bu][bv])
+            w = std::max(w, l->volume[((U + kBlockDim) % kBlockDim) * kBlockDim + (V + kBlockDim) % kBlockDim]);
+        }
+      line.widest[u * kBlockDim + v] = w;
+    }
 }
 
 FlowColumns::BlockLines FlowColumns::lines(const BlockCoord& c) const {
   BlockLines out{};
   for (int a = 0; a < 3; ++a) {
-    auto it = lines_[a].find(lineKey(c, a));
-    out[size_t(a)] = it == lines_[a].end() ? nullptr : &it->second;
+    auto it = index_[a].find(lineKey(c, a));
+    out[size_t(a)] = it == index_[a].end() ? nullptr : &lines_[a][it->second];
   }
   return out;
 }

@@ -16,18 +16,25 @@
 
 #include <array>
 #include <unordered_map>
+#include <vector>
 
 namespace talus {
 
 class FlowColumns {
 public:
+  /// One block's node volumes and masses: node n's at volume[n * volumeStride], mass[n * massStride].
+  struct BlockFlow {
+    BlockCoord c;
+    const float* volume;
+    size_t volumeStride;
+    const Real* mass;
+    size_t massStride;
+  };
   /// Sums P2G's volume channel (grid.extra, channel `volumeChannel`) and node masses per line.
   void build(const SparseGrid& grid, int volumeChannel);
-  /// The same in parts (MPI ranks gather every rank's blocks): clear, then every block with flow
-  /// in block (tree) order, its 512 node volumes and masses, then finish.
-  void clear();
-  void addBlock(const BlockCoord& c, const float* volume, const float* mass);
-  void finish();
+  /// The same from a list of blocks (MPI ranks gather every rank's blocks in tree order). Each line
+  /// adds its blocks in the list's order, so the sums are the same at any thread count.
+  void build(const std::vector<BlockFlow>& blocks);
 
   /// The lines through a block, one per axis (null where no flow).
   struct Line {
@@ -44,8 +51,13 @@ public:
 
 private:
   static uint64_t lineKey(const BlockCoord& c, int axis);
-  void dilate(int axis);
-  std::unordered_map<uint64_t, Line> lines_[3];
+  void dilate(int axis, size_t line);
+  // Per axis: the lines (storage kept between steps), their index by key, and which blocks (indices
+  // into build's list) each line sums, as offsets into `members_`.
+  std::vector<Line> lines_[3];
+  std::unordered_map<uint64_t, uint32_t> index_[3];
+  std::vector<uint32_t> first_[3], members_[3];
+  std::vector<BlockFlow> scratch_;
 };
 
 } // namespace talus

@@ -175,13 +175,20 @@ void Simulation::buildColumnsOnRanks() {
   std::vector<size_t> counts;
   const std::vector<char> all = ranks_->comm().allGather(mine, counts);
   const auto blocks = recordsInTreeOrder(all, rec);
-  columns_.clear();
-  for (const auto& [c, p] : blocks) {
-    std::memcpy(volume.data(), p, kBlockNodes * sizeof(float));
+  // Copied out of the byte records: the lines read them as floats (and Reals) in place.
+  std::vector<float> volumes(blocks.size() * kBlockNodes);
+  std::vector<Real> masses(blocks.size() * kBlockNodes);
+  std::vector<FlowColumns::BlockFlow> flows;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const auto& [c, p] = blocks[i];
+    float* v = volumes.data() + i * kBlockNodes;
+    Real* m = masses.data() + i * kBlockNodes;
+    std::memcpy(v, p, kBlockNodes * sizeof(float));
     std::memcpy(mass.data(), p + kBlockNodes * sizeof(float), kBlockNodes * sizeof(float));
-    columns_.addBlock(c, volume.data(), mass.data());
+    std::copy(mass.begin(), mass.end(), m);
+    flows.push_back({c, v, 1, m, 1});
   }
-  columns_.finish();
+  columns_.build(flows);
 }
 
 void Simulation::reduceGroupMinima() {
