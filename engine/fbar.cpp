@@ -64,9 +64,9 @@ void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& 
   }
 }
 
-void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out) {
+void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out, const PadBox& box) {
   const size_t C = size_t(grid.extraChannels), ch = size_t(grid.fbarChannel);
-  forEachPaddedRow([&](int d, int pad, int node, int n) {
+  forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     const float* in = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
     for (int k = 0; k < n; ++k, in += C) out[pad + k] = in[1] > 0.f ? Real(in[0] / in[1]) : Real(0);
   });

@@ -20,7 +20,7 @@ namespace talus {
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
 
 /// The mean ΔJ - 1 of the padded neighbourhood of a block (`up`: it and its 7 upper neighbours),
-/// 0 where no solid reached a node, in padIndex order (G2PBlock::meanVolumeChange).
-void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out);
+/// 0 where no solid reached a node, in padIndex order (G2PBlock::meanVolumeChange), inside `box`.
+void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out, const PadBox& box);
 
 } // namespace talus

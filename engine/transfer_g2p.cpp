@@ -2,6 +2,7 @@
 
 #include "engine/fbar.h"
 #include "engine/sparse_grid.h"
+#include "engine/transfer_p2g.h"
 
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
@@ -11,9 +12,9 @@ namespace talus {
 namespace {
 
 /// (0, velocity before forces) of the padded neighbourhood's nodes from P2G's momentum channels.
-void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out) {
+void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up, const PadBox& box, Vec4* out) {
   const int C = grid.extraChannels, m = grid.momentumChannel;
-  forEachPaddedRow([&](int d, int pad, int node, int n) {
+  forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     const Vec4* nodes = grid.block(uint32_t(up[d])) + node;
     const float* q = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C) + size_t(m);
     for (int k = 0; k < n; ++k, q += C) {
@@ -26,8 +27,8 @@ void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up,
 
 } // namespace
 
-void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out) {
-  forEachPaddedRow([&](int d, int pad, int node, int n) { std::copy_n(grid.block(uint32_t(up[d])) + node, n, out + pad); });
+void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out, const PadBox& box) {
+  forEachPaddedRow(box, [&](int d, int pad, int node, int n) { std::copy_n(grid.block(uint32_t(up[d])) + node, n, out + pad); });
 }
 
 G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip) {
@@ -39,19 +40,21 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
     G2PStats& st = stats.local();
     for (size_t o = r.begin(); o != r.end(); ++o) {
       const uint32_t b = grid.owning[o];
-      // Copy the padded neighbourhood once; the per-particle loop then indexes it densely.
+      // Copy the part of the padded neighbourhood the particles reach once; the per-particle loop
+      // then indexes it densely.
       const auto& up = grid.topology.upper(b);
-      copyPaddedNodes(grid, up, buf.data());
+      const PadBox box = reachedNodes(groups, grid, b);
+      copyPaddedNodes(grid, up, buf.data(), box);
       const BlockCoord& c = grid.topology.coord(b);
       G2PBlock blk{buf.data(), {c.x * kBlockDim, c.y * kBlockDim, c.z * kBlockDim}, dt, grid.dx,
                    Real(1) / grid.dx};
       if (aflip) {
-        copyOldVelocities(grid, up, old.data());
+        copyOldVelocities(grid, up, box, old.data());
         blk.old = old.data();
         blk.flip = flip;
       }
       if (grid.fbarChannel >= 0) {
-        copyMeanVolumeChange(grid, up, meanChange.data());
+        copyMeanVolumeChange(grid, up, meanChange.data(), box);
         blk.meanVolumeChange = meanChange.data();
       }
       for (MaterialGroup* g : groups) {

@@ -107,8 +107,9 @@ inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, s
 
 namespace talus {
 struct SparseGrid;
-/// The nodes of a block's padded neighbourhood (`up`: it and its 7 upper neighbours) in padIndex order.
-void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out);
+/// The nodes of a block's padded neighbourhood (`up`: it and its 7 upper neighbours) inside `box`,
+/// in padIndex order.
+void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out, const PadBox& box = PadBox{});
 /// Runs G2P (and through each group, deformation update, return mapping and stress) for all
 /// owning blocks in parallel. Blocks only read the grid, so no colouring is needed.
 G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip = 0);

@@ -70,10 +70,10 @@ void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePer
   }
 }
 
-/// Add the padded buffer of block b into b and its 7 upper neighbours.
-void flush(const Vec4* buf, SparseGrid& grid, uint32_t b) {
+/// Add the padded buffer of block b (the part inside `box`) into b and its 7 upper neighbours.
+void flush(const Vec4* buf, SparseGrid& grid, uint32_t b, const PadBox& box) {
   const auto& up = grid.topology.upper(b);
-  forEachPaddedRow([&](int d, int pad, int node, int n) {
+  forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     Vec4* out = grid.block(uint32_t(up[d])) + node;
     for (int k = 0; k < n; ++k) out[k] += buf[pad + k];
   });
@@ -99,11 +99,30 @@ void scatterMassChannels(const ParticleSet& P, size_t begin, size_t end,
 
 } // namespace
 
+PadBox reachedNodes(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b) {
+  const Real invDx = Real(1) / grid.dx;
+  const BlockCoord& bc = grid.topology.coord(b);
+  const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
+  PadBox box{{kPad, kPad, kPad}, {-1, -1, -1}};
+  for (const MaterialGroup* g : groups)
+    for (size_t p = g->blockStart[b]; p < g->blockStart[b + 1]; ++p) {
+      const Vec3 xs = g->particles.x[p] * invDx; // as QuadraticStencil's base
+      for (int d = 0; d < 3; ++d) {
+        const int l = int(std::floor(xs[d] - Real(0.5))) - origin[d];
+        box.lo[d] = std::min(box.lo[d], l);
+        box.hi[d] = std::max(box.hi[d], l + 2);
+      }
+    }
+  return box;
+}
+
 void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
-                  Vec4* buf, float* extra) {
-  std::fill(buf, buf + kPadNodes, Vec4::Zero());
+                  Vec4* buf, float* extra, const PadBox& box) {
   const int C = grid.extraChannels;
-  if (C > 0) std::fill(extra, extra + size_t(kPadNodes) * size_t(C), 0.f);
+  forEachPaddedRow(box, [&](int, int pad, int, int n) {
+    std::fill(buf + pad, buf + pad + n, Vec4::Zero());
+    if (C > 0) std::fill(extra + size_t(pad) * size_t(C), extra + size_t(pad + n) * size_t(C), 0.f);
+  });
   const BlockCoord& bc = grid.topology.coord(b);
   const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
   for (size_t gi = 0; gi < groups.size(); ++gi) {
@@ -123,10 +142,10 @@ void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& g
 
 namespace {
 
-void flushExtra(const float* extra, SparseGrid& grid, uint32_t b) {
+void flushExtra(const float* extra, SparseGrid& grid, uint32_t b, const PadBox& box) {
   const int C = grid.extraChannels;
   const auto& up = grid.topology.upper(b);
-  forEachPaddedRow([&](int d, int pad, int node, int n) {
+  forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C);
     const float* in = extra + size_t(pad) * size_t(C);
     for (int k = 0; k < n * C; ++k) out[k] += in[k];
@@ -174,15 +193,16 @@ void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid
         }
         const uint32_t b = local[c];
         if (const Vec4* ahead = halo ? halo->stored(b) : nullptr) {
-          flush(ahead, grid, b);
-          if (C > 0) flushExtra(halo->storedExtra(b), grid, b);
+          flush(ahead, grid, b, PadBox{});
+          if (C > 0) flushExtra(halo->storedExtra(b), grid, b, PadBox{});
           continue;
         }
         buf.resize(kPadNodes);
         extra.resize(size_t(kPadNodes) * size_t(std::max(C, 0)));
-        scatterBlock(groups, grid, b, dt, buf.data(), extra.data());
-        flush(buf.data(), grid, b);
-        if (C > 0) flushExtra(extra.data(), grid, b);
+        const PadBox box = reachedNodes(groups, grid, b);
+        scatterBlock(groups, grid, b, dt, buf.data(), extra.data(), box);
+        flush(buf.data(), grid, b, box);
+        if (C > 0) flushExtra(extra.data(), grid, b, box);
       }
     });
   }

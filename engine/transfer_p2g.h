@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/material_group.h"
+#include "engine/padded_block.h"
 #include "engine/sparse_grid.h"
 
 #include <vector>
@@ -20,9 +21,13 @@ class HaloExchange;
 void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt,
                      const HaloExchange* halo = nullptr);
 
-/// Scatters the particles of owning block b into its padded buffer `buf` (kPadNodes, zeroed
-/// here) and, when the grid has extra channels, `extra` (kPadNodes * channels, zeroed here).
+/// The padded nodes the particles of owning block b reach (their stencils' bounding box).
+PadBox reachedNodes(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b);
+
+/// Scatters the particles of owning block b into its padded buffer `buf` (kPadNodes) and, when the
+/// grid has extra channels, `extra` (kPadNodes * channels). Both are zeroed here inside `box`, which
+/// must hold reachedNodes(b); outside it they are left as they were.
 void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
-                  Vec4* buf, float* extra);
+                  Vec4* buf, float* extra, const PadBox& box = PadBox{});
 
 } // namespace talus
