@@ -34,13 +34,19 @@ void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
 
 void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
   const size_t N = blocks.size();
-  std::vector<uint8_t> flow(N);
+  // Each block's nodes with flow, in node order: the lines of all three axes read only these.
+  nodes_.resize(N * kBlockNodes);
+  std::vector<uint16_t> count(N);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 16), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const BlockFlow& f = blocks[i];
-      bool any = false;
-      for (int n = 0; n < kBlockNodes; ++n) any |= f.volume[size_t(n) * f.volumeStride] > 0;
-      flow[i] = any;
+      FlowNode* out = nodes_.data() + i * kBlockNodes;
+      int k = 0;
+      for (int n = 0; n < kBlockNodes; ++n) {
+        const float v = f.volume[size_t(n) * f.volumeStride];
+        if (v > 0) out[k++] = {uint16_t(n), v, float(f.mass[size_t(n) * f.massStride])};
+      }
+      count[i] = uint16_t(k);
     }
   });
   // Which line each block with flow adds to, in the list's order (serial: a few hundred blocks).
@@ -50,17 +56,17 @@ void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
     auto& index = index_[a];
     index.clear();
     for (size_t i = 0; i < N; ++i)
-      if (flow[i]) lineOf[i] = index.try_emplace(lineKey(blocks[i].c, a), uint32_t(index.size())).first->second;
+      if (count[i]) lineOf[i] = index.try_emplace(lineKey(blocks[i].c, a), uint32_t(index.size())).first->second;
     const size_t nl = index.size();
     auto& first = first_[a];
     first.assign(nl + 1, 0);
     for (size_t i = 0; i < N; ++i)
-      if (flow[i]) ++first[lineOf[i] + 1];
+      if (count[i]) ++first[lineOf[i] + 1];
     for (size_t l = 0; l < nl; ++l) first[l + 1] += first[l];
     members_[a].resize(first[nl]);
     std::vector<uint32_t> at(first.begin(), first.end() - 1);
     for (size_t i = 0; i < N; ++i)
-      if (flow[i]) members_[a][at[lineOf[i]]++] = uint32_t(i);
+      if (count[i]) members_[a][at[lineOf[i]]++] = uint32_t(i);
     lines_[a].resize(nl);
     offset[size_t(a) + 1] = offset[size_t(a)] + nl;
   }
@@ -78,13 +84,12 @@ void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
     std::fill(std::begin(L.mass), std::end(L.mass), 0.f);
     L.at = lineBlock(blocks[members_[a][first_[a][l]]].c, a);
     for (uint32_t m = first_[a][l]; m < first_[a][l + 1]; ++m) {
-      const BlockFlow& f = blocks[members_[a][m]];
-      for (int n = 0; n < kBlockNodes; ++n) {
-        const float v = f.volume[size_t(n) * f.volumeStride];
-        if (!(v > 0)) continue;
-        const int i = lineIndex(n, a);
-        L.volume[i] += v;
-        L.mass[i] += float(f.mass[size_t(n) * f.massStride]);
+      const uint32_t b = members_[a][m];
+      const FlowNode* nd = nodes_.data() + size_t(b) * kBlockNodes;
+      for (int e = 0; e < count[b]; ++e) {
+        const int i = lineIndex(nd[e].node, a);
+        L.volume[i] += nd[e].volume;
+        L.mass[i] += nd[e].mass;
       }
     }
   });

@@ -58,6 +58,11 @@ private:
   std::unordered_map<uint64_t, uint32_t> index_[3];
   std::vector<uint32_t> first_[3], members_[3];
   std::vector<BlockFlow> scratch_;
+  struct FlowNode {
+    uint16_t node;
+    float volume, mass;
+  };
+  std::vector<FlowNode> nodes_; ///< per block of build's list, its nodes with flow (512 slots)
 };
 
 } // namespace talus

@@ -17,11 +17,21 @@ struct MomentumOut {
   int channel, stride;
 };
 
-/// Scatter particles [begin, end) of one group into the padded block buffer; with kMomentum, also
-/// the stress-free momentum m (v + C (x_i - x_p)) AFLIP needs, sharing the stencil and weights.
-template <bool kMomentum>
+/// Where factor * mass goes (thickness volume, per-material masses): `count` (channel, factor)
+/// pairs, into float channels of `buf` with stride `stride`.
+struct MassOut {
+  float* buf;
+  int stride;
+  const std::pair<int, float>* to;
+  size_t count;
+};
+
+/// Scatter particles [begin, end) of one group into the padded block buffer, sharing the stencil
+/// and weights with, if kMomentum, the stress-free momentum m (v + C (x_i - x_p)) AFLIP needs and,
+/// if kMass, the mass channels.
+template <bool kMomentum, bool kMass>
 void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePerMass, Real dt, Real dx,
-                  const int origin[3], Vec4* buf, MomentumOut out = {}) {
+                  const int origin[3], Vec4* buf, MomentumOut out, MassOut mo) {
   const Real invDx = Real(1) / dx;
   const Real stressScale = dt * volumePerMass * Real(4) * invDx * invDx; // dt V0 D^-1 per unit mass
   const size_t stride = size_t(out.stride);
@@ -65,6 +75,13 @@ void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePer
             node[2] += float(r[2]);
           }
         }
+        if constexpr (kMass) {
+          float* node = mo.buf + size_t(pad) * size_t(mo.stride);
+          for (int k = 0; k < 3; ++k, node += mo.stride) {
+            const float w = float(wij * s.w[2][k]) * float(m);
+            for (size_t t = 0; t < mo.count; ++t) node[mo.to[t].first] += w * mo.to[t].second;
+          }
+        }
       }
     }
   }
@@ -77,24 +94,6 @@ void flush(const Vec4* buf, SparseGrid& grid, uint32_t b, const PadBox& box) {
     Vec4* out = grid.block(uint32_t(up[d])) + node;
     for (int k = 0; k < n; ++k) out[k] += buf[pad + k];
   });
-}
-
-/// factor * mass of particles [begin, end) into each listed extra channel.
-void scatterMassChannels(const ParticleSet& P, size_t begin, size_t end,
-                         const std::vector<std::pair<int, float>>& to, int channels, Real dx, const int origin[3],
-                         float* buf) {
-  const Real invDx = Real(1) / dx;
-  for (size_t p = begin; p < end; ++p) {
-    const QuadraticStencil s(P.x[p] * invDx);
-    const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        for (int k = 0; k < 3; ++k) {
-          const float w = float(s.w[0][i] * s.w[1][j] * s.w[2][k]) * float(P.mass[p]);
-          float* node = buf + size_t(padIndex(l0 + i, l1 + j, l2 + k)) * size_t(channels);
-          for (const auto& [ch, factor] : to) node[ch] += w * factor;
-        }
-  }
 }
 
 } // namespace
@@ -130,13 +129,14 @@ void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& g
     const size_t begin = g.blockStart[b], end = g.blockStart[b + 1];
     if (begin == end) continue;
     const Real volumePerMass = Real(1.0 / g.density());
-    if (grid.momentumChannel >= 0)
-      scatterRange<true>(g.particles, begin, end, volumePerMass, dt, grid.dx, origin, buf,
-                         MomentumOut{extra, grid.momentumChannel, C});
-    else
-      scatterRange<false>(g.particles, begin, end, volumePerMass, dt, grid.dx, origin, buf);
-    if (C > 0 && !grid.extraOf[gi].empty())
-      scatterMassChannels(g.particles, begin, end, grid.extraOf[gi], C, grid.dx, origin, extra);
+    const MomentumOut mom{extra, grid.momentumChannel, C};
+    const bool momentum = grid.momentumChannel >= 0, mass = C > 0 && !grid.extraOf[gi].empty();
+    const MassOut mo{extra, C, mass ? grid.extraOf[gi].data() : nullptr, mass ? grid.extraOf[gi].size() : 0};
+    const ParticleSet& P = g.particles;
+    if (momentum && mass) scatterRange<true, true>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
+    else if (momentum) scatterRange<true, false>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
+    else if (mass) scatterRange<false, true>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
+    else scatterRange<false, false>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
   }
 }
 
