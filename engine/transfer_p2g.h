@@ -21,7 +21,8 @@ class HaloExchange;
 void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt,
                      const HaloExchange* halo = nullptr);
 
-/// The padded nodes the particles of owning block b reach (their stencils' bounding box).
+/// The padded nodes the particles of owning block b reach (their stencils' bounding box), or all
+/// of them when the block holds more particles than that.
 PadBox reachedNodes(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b);
 
 /// Scatters the particles of owning block b into its padded buffer `buf` (kPadNodes) and, when the

@@ -107,6 +107,41 @@ TEST(Kernels, P2GWeightsSumToOneAndConserveMassAndMomentum) {
   EXPECT_LT((gq - pq).norm(), 1e-5 * pm);
 }
 
+TEST(Kernels, P2GReachesNoPaddedNodeOutsideTheReachedBox) {
+  // P2G and G2P clear, add and copy only reachedNodes(b); a node outside it that a particle's
+  // stencil touches would lose that particle's mass. Scatter each block over the whole padded
+  // neighbourhood and require zeros outside its box, and a box no larger than the stencils'.
+  auto g = scattered(5000, 4); // ~40 particles per block: the box path (dense blocks take it all)
+  SparseGrid grid;
+  ReorderScratch scratch;
+  grid.dx = Real(kDx);
+  std::vector<MaterialGroup*> groups{g.get()};
+  binParticles(groups, grid, scratch);
+  std::vector<Vec4> buf(kPadNodes);
+  size_t partial = 0;
+  for (uint32_t b : grid.owning) {
+    const PadBox box = reachedNodes(groups, grid, b);
+    scatterBlock(groups, grid, b, Real(1e-3), buf.data(), nullptr);
+    int lo[3] = {kPad, kPad, kPad}, hi[3] = {-1, -1, -1};
+    for (int i = 0; i < kPad; ++i)
+      for (int j = 0; j < kPad; ++j)
+        for (int k = 0; k < kPad; ++k) {
+          if (buf[size_t(padIndex(i, j, k))][0] == Real(0)) continue;
+          const int at[3] = {i, j, k};
+          for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], at[d]), hi[d] = std::max(hi[d], at[d]);
+        }
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_LE(box.lo[d], lo[d]) << "block " << b << " axis " << d;
+      EXPECT_GE(box.hi[d], hi[d]) << "block " << b << " axis " << d;
+      // Every stencil node has positive weight, so the mass reaches the box's faces exactly.
+      EXPECT_EQ(box.lo[d], lo[d]);
+      EXPECT_EQ(box.hi[d], hi[d]);
+    }
+    partial += (box.hi[0] - box.lo[0] + 1) * (box.hi[1] - box.lo[1] + 1) * (box.hi[2] - box.lo[2] + 1) < kPadNodes;
+  }
+  EXPECT_GT(partial, grid.owning.size() / 2); // the test exercises partial boxes
+}
+
 TEST(Kernels, P2GSpreadsOneParticleWithTheQuadraticWeights) {
   auto g = scattered(1, 4);
   const Vec3 x(Real(0.123), Real(0.456), Real(0.789));
