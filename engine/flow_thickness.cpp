@@ -25,6 +25,7 @@ static BlockCoord lineBlock(const BlockCoord& c, int axis) {
 uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) { return blockKey(lineBlock(c, axis)); }
 
 void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
+  static_assert(sizeof(Vec4) == 4 * sizeof(Real), "node masses are read 4 Reals apart");
   scratch_.clear();
   const size_t C = size_t(grid.extraChannels);
   for (uint32_t b = 0; b < grid.blockCount(); ++b)
@@ -34,19 +35,29 @@ void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
 
 void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
   const size_t N = blocks.size();
-  // Each block's nodes with flow, in node order: the lines of all three axes read only these.
-  nodes_.resize(N * kBlockNodes);
-  std::vector<uint16_t> count(N);
+  // Each block's nodes with flow, in node order, packed (count, then offsets, then the nodes): the
+  // lines of all three axes read only these.
+  std::vector<uint32_t> count(N), start(N + 1, 0);
+  auto eachFlowNode = [&](size_t i, auto&& f) {
+    const BlockFlow& b = blocks[i];
+    for (int n = 0; n < kBlockNodes; ++n) {
+      const float v = b.volume[size_t(n) * b.volumeStride];
+      if (v > 0) f(n, v, float(b.mass[size_t(n) * b.massStride]));
+    }
+  };
   tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 16), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
-      const BlockFlow& f = blocks[i];
-      FlowNode* out = nodes_.data() + i * kBlockNodes;
-      int k = 0;
-      for (int n = 0; n < kBlockNodes; ++n) {
-        const float v = f.volume[size_t(n) * f.volumeStride];
-        if (v > 0) out[k++] = {uint16_t(n), v, float(f.mass[size_t(n) * f.massStride])};
-      }
-      count[i] = uint16_t(k);
+      uint32_t k = 0;
+      eachFlowNode(i, [&](int, float, float) { ++k; });
+      count[i] = k;
+    }
+  });
+  for (size_t i = 0; i < N; ++i) start[i + 1] = start[i] + count[i];
+  nodes_.resize(start[N]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, N, 16), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      FlowNode* out = nodes_.data() + start[i];
+      eachFlowNode(i, [&](int n, float v, float m) { *out++ = {uint16_t(n), v, m}; });
     }
   });
   // Which line each block with flow adds to, in the list's order (serial: a few hundred blocks).
@@ -85,11 +96,10 @@ void FlowColumns::build(const std::vector<BlockFlow>& blocks) {
     L.at = lineBlock(blocks[members_[a][first_[a][l]]].c, a);
     for (uint32_t m = first_[a][l]; m < first_[a][l + 1]; ++m) {
       const uint32_t b = members_[a][m];
-      const FlowNode* nd = nodes_.data() + size_t(b) * kBlockNodes;
-      for (int e = 0; e < count[b]; ++e) {
-        const int i = lineIndex(nd[e].node, a);
-        L.volume[i] += nd[e].volume;
-        L.mass[i] += nd[e].mass;
+      for (uint32_t e = start[b]; e < start[b + 1]; ++e) {
+        const int i = lineIndex(nodes_[e].node, a);
+        L.volume[i] += nodes_[e].volume;
+        L.mass[i] += nodes_[e].mass;
       }
     }
   });

@@ -62,7 +62,7 @@ private:
     uint16_t node;
     float volume, mass;
   };
-  std::vector<FlowNode> nodes_; ///< per block of build's list, its nodes with flow (512 slots)
+  std::vector<FlowNode> nodes_; ///< the nodes with flow of build's blocks, block after block
 };
 
 } // namespace talus
