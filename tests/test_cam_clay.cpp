@@ -119,6 +119,49 @@ TEST(CamClay, ProjectionSensitivityToTheEllipseSizeMatchesFiniteDifferences) {
   EXPECT_GT(outside, 1000);
 }
 
+// The return's inner solve: the closest point on an axis-aligned ellipse to an outside point, against
+// bisection of its root equation to the last bit, for ellipses of aspect 1e-3..1e3 and points from
+// just outside to 1e4 semi-axes away (loose snow: p0 -> 0 shrinks the ellipse under a fixed trial
+// state). Cold starts and warm ones (the previous root of a 1 % larger ellipse, as the hardening
+// solve gives). Agreement to 1e-12 of the distance scale (the bisection's root is exact to the last
+// bits; 1e-12 leaves room for the closed form's rounding). The step counts bound the cost: Newton on
+// S itself took 2.06 cold (at most 23) and 2.55 warm on these points, this one 1.42 (10) and 1.69.
+TEST(CamClay, ClosestPointOnTheEllipseMatchesBisectionInFewNewtonSteps) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int cases = 0, steps = 0, most = 0, warmSteps = 0, warmMost = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double A = 1, B = std::pow(10.0, -3 + 6 * unit(rng));
+    const double far = std::pow(10.0, 4 * unit(rng)), phi = 0.5 * M_PI * unit(rng);
+    const double x = A * (1 + far) * std::cos(phi) + 1e-3, y = B * (1 + far) * std::sin(phi) + 1e-3 * B;
+    auto S = [&](double t) { return std::pow(A * x / (t + A * A), 2) + std::pow(B * y / (t + B * B), 2); };
+    double lo = 0, hi = 1;
+    while (S(hi) > 1) hi *= 2;
+    for (int i = 0; i < 200; ++i) (S(0.5 * (lo + hi)) > 1 ? lo : hi) = 0.5 * (lo + hi);
+    const double tRef = 0.5 * (lo + hi);
+    const double pxRef = A * A * x / (tRef + A * A), pyRef = B * B * y / (tRef + B * B);
+    const double scale = std::hypot(x, y);
+    double px, py, t = 0;
+    int n = 0;
+    CamClayModel::closestOnEllipse(x, y, A, B, px, py, t, &n);
+    EXPECT_NEAR(px, pxRef, 1e-12 * scale) << x << " " << y << " " << B;
+    EXPECT_NEAR(py, pyRef, 1e-12 * scale) << x << " " << y << " " << B;
+    ++cases, steps += n, most = std::max(most, n);
+    // Warm: the root of the same point and a 1 % larger ellipse as the guess.
+    double qx, qy, t1 = 0, unusedX, unusedY;
+    CamClayModel::closestOnEllipse(x, y, 1.01 * A, 1.01 * B, unusedX, unusedY, t1);
+    CamClayModel::closestOnEllipse(x, y, A, B, qx, qy, t1, &n);
+    EXPECT_NEAR(qx, pxRef, 1e-12 * scale);
+    EXPECT_NEAR(qy, pyRef, 1e-12 * scale);
+    warmSteps += n, warmMost = std::max(warmMost, n);
+  }
+  EXPECT_LE(double(steps) / cases, 1.8);
+  EXPECT_LE(double(warmSteps) / cases, 2.0);
+  EXPECT_LE(most, 12);
+  std::printf("closest point: %.2f Newton steps cold (at most %d), %.2f warm (at most %d)\n", double(steps) / cases,
+              most, double(warmSteps) / cases, warmMost);
+}
+
 // Newton on the hardening equation lands where the bracketed (Illinois) solve does, to 1e-9 in
 // eps_v (the state is stored in float, 6e-8 relative) and 1e-8 of the stress scale in (p, q),
 // in at most six projections and three or fewer on average (the bracketed solve takes ~6).
