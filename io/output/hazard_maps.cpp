@@ -129,45 +129,31 @@ void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_
   const int w = m.window.nx, h = m.window.ny;
   const float a = float(m.a), bx = float(m.bx), by = float(m.by); // local metres are float anyway
   m.rowStart.resize(groups.size());
-  m.order.resize(groups.size());
   m.splats.resize(groups.size());
-  std::vector<int32_t> row;
+  auto& row = m.rowOf;
   for (size_t g = 0; g < groups.size(); ++g) {
     if (!use[g]) continue;
     const ParticleSet& P = groups[g]->particles;
     const float invRho = float(1.0 / groups[g]->density());
-    auto& splat = m.splats[g];
     row.resize(P.size());
-    splat.resize(P.size());
-    // Fixed chunks (not thread-dependent): each computes its particles' splats and counts them
-    // per row; a stable counting sort then lists particles by row, chunk by chunk, in the order
-    // a serial pass would.
+    // Fixed chunks (not thread-dependent): each counts its particles per row; a stable counting
+    // sort then places the splats by row, chunk by chunk, in the order a serial pass would.
     constexpr size_t kChunk = 16384;
     const size_t chunks = (P.size() + kChunk - 1) / kChunk, rows = size_t(h) + 1;
     std::vector<uint32_t> count(chunks * rows, 0);
+    auto cellOf = [&](size_t p) { return std::pair{a * P.x[p][0] + bx, -a * P.x[p][1] + by}; };
     tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
       uint32_t* cnt = count.data() + ch * rows;
       for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p) {
-        const float fx = a * P.x[p][0] + bx, fy = -a * P.x[p][1] + by;
-        if (!(fx >= -1 && fx < w && fy >= -1 && fy < h)) {
-          row[p] = -1;
-          continue;
-        }
-        // First of the two rows the splat covers, plus one (0 .. h); floor via int as fx, fy >= -1.
-        row[p] = int32_t(fy + 1);
-        ++cnt[size_t(row[p])];
-        Splat& sp = splat[p];
-        sp.col = int32_t(fx + 1) - 1;
-        sp.tx = fx - float(sp.col);
-        sp.ty = fy - float(row[p] - 1);
-        const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
-        sp.q[0] = mass * invRho, sp.q[1] = mass, sp.q[2] = mass * std::sqrt(v2), sp.q[3] = mass * v2;
+        const auto [fx, fy] = cellOf(p);
+        // First of the two rows the splat covers, plus one (0 .. h); floor via int as fy >= -1.
+        row[p] = fx >= -1 && fx < w && fy >= -1 && fy < h ? int32_t(fy + 1) : -1;
+        if (row[p] >= 0) ++cnt[size_t(row[p])];
       }
     });
     auto& start = m.rowStart[g];
-    auto& order = m.order[g];
     start.assign(rows + 1, 0);
-    uint32_t total = 0; // count[] becomes each (chunk, row)'s first slot in `order`
+    uint32_t total = 0; // count[] becomes each (chunk, row)'s first slot in the sorted splats
     for (size_t r = 0; r < rows; ++r) {
       start[r] = total;
       for (size_t ch = 0; ch < chunks; ++ch) {
@@ -177,11 +163,20 @@ void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_
       }
     }
     start[rows] = total;
-    order.resize(total);
+    auto& splat = m.splats[g];
+    splat.resize(total);
     tbb::parallel_for(size_t(0), chunks, [&](size_t ch) {
       uint32_t* next = count.data() + ch * rows;
-      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p)
-        if (row[p] >= 0) order[next[size_t(row[p])]++] = uint32_t(p);
+      for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p) {
+        if (row[p] < 0) continue;
+        const auto [fx, fy] = cellOf(p);
+        Splat& sp = splat[next[size_t(row[p])]++];
+        sp.col = int32_t(fx + 1) - 1;
+        sp.tx = fx - float(sp.col);
+        sp.ty = fy - float(row[p] - 1);
+        const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
+        sp.q[0] = mass * invRho, sp.q[1] = mass, sp.q[2] = mass * std::sqrt(v2), sp.q[3] = mass * v2;
+      }
     });
   }
 }
@@ -202,14 +197,13 @@ void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t
       float* __restrict all = m.sums[0].data();
       float* __restrict mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
       const Splat* splats = m.splats[g].data();
-      const uint32_t* order = m.order[g].data();
       const uint32_t* start = m.rowStart[g].data();
       // Splats starting in row r0 - 1 reach row r0; those starting in row r1 - 1 end in r1.
       for (int j = r0; j <= r1; ++j) {
         const int r = j - 1;
         const bool upper = r >= r0, lower = r + 1 < r1; // which of the splat's rows are ours
         for (uint32_t k = start[j]; k < start[j + 1]; ++k) {
-          const Splat sp = splats[order[k]];
+          const Splat sp = splats[k];
           const float wx[2] = {1 - sp.tx, sp.tx}, wy[2] = {1 - sp.ty, sp.ty};
           for (int dr = upper ? 0 : 1; dr < (lower ? 2 : 1); ++dr)
             for (int dc = 0; dc < 2; ++dc) {

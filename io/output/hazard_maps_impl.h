@@ -33,8 +33,9 @@ struct HazardMaps::Impl {
   std::vector<uint8_t> erodibleGroup;
   std::vector<float> cosSlope; ///< NaN until known
   std::vector<uint8_t> mark; ///< cell has sums this accumulation
-  std::vector<std::vector<uint32_t>> rowStart, order; ///< per group: particles by first splat row
-  std::vector<std::vector<Splat>> splats;              ///< per group and particle
+  std::vector<std::vector<uint32_t>> rowStart; ///< per group: first splat of each first splat row
+  std::vector<std::vector<Splat>> splats;      ///< per group: splats by first row, particle order within a row
+  std::vector<int32_t> rowOf;                  ///< scratch: first splat row + 1 per particle, -1 outside
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
   double endTime = 0;
@@ -42,8 +43,9 @@ struct HazardMaps::Impl {
   Vec3d origin = Vec3d::Zero();
   double zLo = 0, zHi = 0, dx = 1;
 
-  /// Lists the particles of the groups in `use` by the map row their splat starts in, with
-  /// their splats (see accumulate).
+  /// The splats of the particles of the groups in `use`, sorted by the map row they start in
+  /// (see accumulate). Stored in that order, not per particle: the sums then read them in
+  /// sequence (a gather through a particle index missed the cache on most of them).
   void binSplats(const Simulation& sim, const std::vector<uint8_t>& use);
   /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
   /// then calls fold(cell) for each cell touched and clears its sums.
