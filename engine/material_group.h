@@ -78,7 +78,7 @@ public:
   virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
 
   /// Keep per-particle model state aligned with `particles`.
-  virtual void permuteState(const std::vector<uint32_t>& perm, ReorderScratch& scratch) = 0;
+  virtual void permuteState(const Permutation& perm, ReorderScratch& scratch) = 0;
   virtual void compactState(const std::vector<uint8_t>& keep) = 0;
   /// Initialise model state for particles appended to `particles` (undeformed, unyielded).
   virtual void resizeState(size_t n) = 0;

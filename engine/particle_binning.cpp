@@ -95,11 +95,22 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
       for (auto& chunk : runs)
         for (Run& r : chunk) r.to = cursor[r.block], cursor[r.block] += r.count;
       auto& perm = scratch.perm;
-      perm.resize(n);
+      perm.index.resize(n);
+      // The permutation moves the runs whose place changes; the range they span is all a
+      // reorder has to copy (most of an array where only part of a scene flows stays put).
+      perm.begin = n, perm.end = 0;
+      for (size_t c = 0; c < runs.size(); ++c) {
+        size_t p = chunks[c].first;
+        for (const Run& r : runs[c]) {
+          if (r.to != p) perm.begin = std::min<size_t>(perm.begin, r.to), perm.end = std::max<size_t>(perm.end, r.to + r.count);
+          p += r.count;
+        }
+      }
+      perm.begin = std::min(perm.begin, perm.end);
       tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
         uint32_t p = uint32_t(chunks[c].first);
         for (const Run& r : runs[c])
-          for (uint32_t i = 0; i < r.count; ++i) perm[r.to + i] = p++;
+          for (uint32_t i = 0; i < r.count; ++i) perm.index[r.to + i] = p++;
       });
       g->particles.forEachArray([&](auto& a) { gatherInPlace(a, perm, scratch); });
       g->permuteState(perm, scratch);

@@ -32,13 +32,21 @@ struct ParticleSet {
   }
 };
 
+/// A gather permutation: new[i] = old[index[i]]. Outside [begin, end) it is the identity, so a
+/// reorder moves only that range: a flow that crosses blocks in one part of a scene (a slide in
+/// a lake at rest) does not pay for copying the rest.
+struct Permutation {
+  std::vector<uint32_t> index;
+  size_t begin = 0, end = 0;
+};
+
 /// Buffers the per-step reordering reuses (binning, gathers). Allocated once and kept: a buffer
 /// allocated afresh every step costs a page fault per 4 KB on first touch, which was most of the
 /// binning time on the lab box (60-82 -> 24-29 ns per particle-step, docs/throughput.md).
 class ReorderScratch {
 public:
   std::vector<uint32_t> blockOf; ///< owning block per particle
-  std::vector<uint32_t> perm;    ///< gather permutation of the sort
+  Permutation perm;              ///< gather permutation of the sort
 
   /// Uninitialised room for n values of T (any element type of a particle array).
   template <class T> T* values(size_t n) {
@@ -48,22 +56,25 @@ public:
     return reinterpret_cast<T*>(raw_.data());
   }
   size_t bytes() const {
-    return (blockOf.capacity() + perm.capacity()) * sizeof(uint32_t) + raw_.capacity() * sizeof(double);
+    return (blockOf.capacity() + perm.index.capacity()) * sizeof(uint32_t) + raw_.capacity() * sizeof(double);
   }
 
 private:
   std::vector<double> raw_;
 };
 
-/// a[i] <- a[perm[i]] for every i (perm is a gather permutation), through scratch.values.
+/// a[i] <- a[perm.index[i]] for i in [perm.begin, perm.end) (the identity elsewhere), through
+/// scratch.values.
 template <class T>
-void gatherInPlace(std::vector<T>& a, const std::vector<uint32_t>& perm, ReorderScratch& scratch) {
-  T* tmp = scratch.values<T>(a.size());
-  const tbb::blocked_range<size_t> all(0, a.size(), 8192);
-  tbb::parallel_for(all, [&](const auto& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) new (tmp + i) T(a[perm[i]]);
+void gatherInPlace(std::vector<T>& a, const Permutation& perm, ReorderScratch& scratch) {
+  const size_t b = perm.begin;
+  T* tmp = scratch.values<T>(perm.end - b); // tmp[i - b] for i in the range
+  const uint32_t* from = perm.index.data();
+  const tbb::blocked_range<size_t> moved(b, perm.end, 8192);
+  tbb::parallel_for(moved, [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) new (tmp + (i - b)) T(a[from[i]]);
   });
-  tbb::parallel_for(all, [&](const auto& r) { std::copy(tmp + r.begin(), tmp + r.end(), a.begin() + r.begin()); });
+  tbb::parallel_for(moved, [&](const auto& r) { std::copy(tmp + (r.begin() - b), tmp + (r.end() - b), a.begin() + r.begin()); });
 }
 
 /// Keep the elements whose mask entry is non-zero, preserving order.

@@ -81,7 +81,7 @@ public:
   }
   size_t stateSize() const override { return dJ.size(); }
 
-  void permuteState(const std::vector<uint32_t>& perm, ReorderScratch& scratch) override {
+  void permuteState(const Permutation& perm, ReorderScratch& scratch) override {
     gatherInPlace(dJ, perm, scratch);
   }
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }

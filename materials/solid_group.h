@@ -42,7 +42,7 @@ public:
   }
   size_t stateSize() const override { return F.size() == state.size() ? F.size() : size_t(-1); }
 
-  void permuteState(const std::vector<uint32_t>& perm, ReorderScratch& scratch) override {
+  void permuteState(const Permutation& perm, ReorderScratch& scratch) override {
     gatherInPlace(F, perm, scratch);
     gatherInPlace(state, perm, scratch);
   }

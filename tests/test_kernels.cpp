@@ -80,6 +80,43 @@ TEST(Kernels, BinningPartitionsParticlesByOwningBlockAndIsStable) {
   EXPECT_EQ(g->particles.x, x);
 }
 
+TEST(Kernels, ReorderMovesOnlyTheRangeWhereParticlesChangedBlockAndCarriesTheirState) {
+  auto g = scattered(20000, 2);
+  SparseGrid grid;
+  ReorderScratch scratch;
+  grid.dx = Real(kDx);
+  std::vector<MaterialGroup*> groups{g.get()};
+  binParticles(groups, grid, scratch);
+  // A local flow: one particle in the middle moves into the block of a particle 3 000 places on.
+  auto& P = g->particles;
+  const size_t from = 8000, to = 11000;
+  const Real invDx = Real(1 / kDx);
+  ASSERT_NE(owningBlock(P.x[from], invDx), owningBlock(P.x[to], invDx));
+  P.x[from] = P.x[to];
+  for (size_t p = 0; p < g->size(); ++p) g->F[p] = Mat3::Identity() * P.mass[p]; // the state carries the tag too
+  const std::vector<Real> before = P.mass;
+  binParticles(groups, grid, scratch);
+  // Expected: the stable counting sort of the whole set by block.
+  BlockTopology::Lookup lookup(grid.topology);
+  std::vector<size_t> order(before.size());
+  std::vector<Vec3> x0(before.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for (size_t p = 0; p < g->size(); ++p) x0[size_t(P.mass[p]) - 1] = P.x[p]; // positions by tag
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return lookup.find(owningBlock(x0[size_t(before[a]) - 1], invDx)) < lookup.find(owningBlock(x0[size_t(before[b]) - 1], invDx));
+  });
+  size_t first = g->size(), last = 0;
+  for (size_t i = 0; i < g->size(); ++i) {
+    ASSERT_EQ(P.mass[i], before[order[i]]) << "particle " << i;
+    ASSERT_EQ(g->F[i](0, 0), P.mass[i]) << "state of particle " << i;
+    if (P.mass[i] != before[i]) first = std::min(first, i), last = i;
+  }
+  // The copy spans exactly the particles that changed place: between the two, not the whole set.
+  EXPECT_EQ(scratch.perm.begin, first);
+  EXPECT_EQ(scratch.perm.end, last + 1);
+  EXPECT_LT(last + 1 - first, 3100u);
+}
+
 TEST(Kernels, P2GWeightsSumToOneAndConserveMassAndMomentum) {
   auto g = scattered(5000, 2);
   std::mt19937 rng(3);
