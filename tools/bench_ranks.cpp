@@ -24,7 +24,7 @@ int runRankBenchmarks(const BenchOptions& opt, const std::shared_ptr<Communicato
     SceneSetup s = benchmarkScene(name, opt);
     Simulation sim(s.settings, std::move(s.groups));
     sim.distribute(ranks);
-    for (int i = 0; i < opt.warmup; ++i) sim.step();
+    for (int i = 0, n = benchmarkWarmup(name, opt); i < n; ++i) sim.step();
     comm.maxOf(0); // start together
     const double halo0 = sim.phaseTimes().halo;
     const uint64_t bytes0 = comm.bytesSent, ps0 = sim.particleSteps();

@@ -37,6 +37,9 @@ std::vector<std::string> benchmarkCaseNames();
 /// The scene of a benchmark case, its particle count multiplied by about opt.scale, with opt's
 /// AFLIP blend and F-bar.
 SceneSetup benchmarkScene(const std::string& name, const BenchOptions& opt);
+/// Steps run before timing a case: options.warmup, and more for a case whose state takes time to
+/// set in (snow_flow's yielding).
+int benchmarkWarmup(const std::string& name, const BenchOptions& options);
 
 /// `mpirun -np N talus bench --ranks`: each case distributed over the N ranks (threads per rank:
 /// the first of options.threads); rank 0 prints throughput, communication time and bytes.
