@@ -44,7 +44,9 @@ struct TaitWaterModel {
     // det(I + A) - 1 by its invariants, exact and free of cancellation for small A.
     const double tr = A.trace();
     const double delta = tr + 0.5 * (tr * tr - (A * A).trace()) + A.determinant();
-    const double d = std::min(double(dJ) + delta + double(dJ) * delta, maxJ() - 1);
+    // maxJ() is a pow per particle; without tension (the default) it is exactly 1 (pow(1, y) = 1).
+    const double dMax = maxTension > 0 ? maxJ() - 1 : 0.0;
+    const double d = std::min(double(dJ) + delta + double(dJ) * delta, dMax);
     dJ = float(d);
     const double Jn = 1 + d;
     const double p = pressureOfStrain(d);
