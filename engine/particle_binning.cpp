@@ -17,20 +17,28 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
   const Real invDx = Real(1) / grid.dx;
 
   // 1. Owning blocks. Particles are mostly sorted already, so runs of equal blocks are long
-  //    and each chunk contributes few coordinates.
+  //    and each chunk contributes few coordinates. The runs (coordinate, length) are kept for
+  //    step 2, which then needs no second pass over the particles.
+  struct CoordRun {
+    BlockCoord block;
+    uint32_t count;
+  };
   std::vector<BlockCoord> owning;
-  for (MaterialGroup* g : groups) {
-    const auto& x = g->particles.x;
-    std::vector<std::vector<BlockCoord>> runs(chunkCount(x.size()));
+  std::vector<std::vector<std::vector<CoordRun>>> coordRuns(groups.size()); // [group][chunk]
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    const auto& x = groups[gi]->particles.x;
+    auto& runs = coordRuns[gi];
+    runs.resize(chunkCount(x.size()));
     tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
       const size_t end = std::min(x.size(), (c + 1) * kChunk);
-      BlockCoord last{INT32_MIN, 0, 0};
       for (size_t p = c * kChunk; p < end; ++p) {
         const BlockCoord b = owningBlock(x[p], invDx);
-        if (b != last) runs[c].push_back(b), last = b;
+        if (runs[c].empty() || b != runs[c].back().block) runs[c].push_back({b, 0});
+        ++runs[c].back().count;
       }
     });
-    for (const auto& r : runs) owning.insert(owning.end(), r.begin(), r.end());
+    for (const auto& chunk : runs)
+      for (const CoordRun& r : chunk) owning.push_back(r.block);
   }
   if (periodic && periodic->any()) periodic->addImages(owning);
   grid.topology.rebuild(owning);
@@ -48,14 +56,13 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
     MaterialGroup* g = groups[gi];
     auto& x = g->particles.x;
     const size_t n = x.size();
-    auto& blockOf = scratch.blockOf;
-    blockOf.resize(n);
     // Chunks in the order the sort is stable in: the array's, or the segments given for it.
     std::vector<std::pair<size_t, size_t>> chunks;
     auto segment = [&](size_t b, size_t e) {
       for (size_t c = b; c < e; c += kChunk) chunks.push_back({c, std::min(e, c + kChunk)});
     };
-    if (order && !(*order)[gi].empty())
+    const bool segments = order && !(*order)[gi].empty();
+    if (segments)
       for (const auto& [b, e] : (*order)[gi]) segment(b, e);
     else
       segment(0, n);
@@ -64,6 +71,10 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
     std::vector<std::vector<Run>> runs(chunks.size());
     tbb::parallel_for(size_t(0), runs.size(), [&](size_t c) {
       BlockTopology::Lookup lookup(grid.topology);
+      if (!segments) { // the chunks of step 1: its runs, looked up
+        for (const CoordRun& r : coordRuns[gi][c]) runs[c].push_back({uint32_t(lookup.find(r.block)), r.count});
+        return;
+      }
       const size_t end = chunks[c].second;
       BlockCoord last{INT32_MIN, 0, 0};
       uint32_t lastIndex = 0;
@@ -71,7 +82,6 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
         const BlockCoord b = owningBlock(x[p], invDx);
         if (b != last) last = b, lastIndex = uint32_t(lookup.find(b));
         if (runs[c].empty() || runs[c].back().block != lastIndex) runs[c].push_back({lastIndex, 0});
-        blockOf[p] = lastIndex;
         ++runs[c].back().count;
       }
     });

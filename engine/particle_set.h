@@ -45,8 +45,7 @@ struct Permutation {
 /// binning time on the lab box (60-82 -> 24-29 ns per particle-step, docs/throughput.md).
 class ReorderScratch {
 public:
-  std::vector<uint32_t> blockOf; ///< owning block per particle
-  Permutation perm;              ///< gather permutation of the sort
+  Permutation perm; ///< gather permutation of the sort
 
   /// Uninitialised room for n values of T (any element type of a particle array).
   template <class T> T* values(size_t n) {
@@ -56,7 +55,7 @@ public:
     return reinterpret_cast<T*>(raw_.data());
   }
   size_t bytes() const {
-    return (blockOf.capacity() + perm.index.capacity()) * sizeof(uint32_t) + raw_.capacity() * sizeof(double);
+    return perm.index.capacity() * sizeof(uint32_t) + raw_.capacity() * sizeof(double);
   }
 
 private:
