@@ -37,16 +37,25 @@ std::unique_ptr<SolidGroup<ElasticModel>> scattered(size_t n, unsigned seed) {
   return g;
 }
 
+/// A scattered group binned on a grid of spacing kDx, with the scratch to bin it again.
+struct Binned {
+  std::unique_ptr<SolidGroup<ElasticModel>> g;
+  SparseGrid grid;
+  ReorderScratch scratch;
+  std::vector<MaterialGroup*> groups;
+  Binned(size_t n, unsigned seed) : g(scattered(n, seed)), groups{g.get()} {
+    grid.dx = Real(kDx);
+    rebin();
+  }
+  void rebin() { binParticles(groups, grid, scratch); }
+};
 
 } // namespace
 
 TEST(Kernels, BinningPartitionsParticlesByOwningBlockAndIsStable) {
-  auto g = scattered(20000, 1);
-  SparseGrid grid;
-  ReorderScratch scratch;
-  grid.dx = Real(kDx);
-  std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid, scratch);
+  Binned bin(20000, 1);
+  auto& g = bin.g;
+  const SparseGrid& grid = bin.grid;
   const auto& start = g->blockStart;
   ASSERT_EQ(start.size(), grid.blockCount() + 1);
   EXPECT_EQ(start.front(), 0u);
@@ -76,17 +85,13 @@ TEST(Kernels, BinningPartitionsParticlesByOwningBlockAndIsStable) {
   EXPECT_EQ(owning, grid.owning.size());
   // Binning the binned set again changes nothing (the sorted fast path).
   const auto x = g->particles.x;
-  binParticles(groups, grid, scratch);
+  bin.rebin();
   EXPECT_EQ(g->particles.x, x);
 }
 
 TEST(Kernels, ReorderMovesOnlyTheRangeWhereParticlesChangedBlockAndCarriesTheirState) {
-  auto g = scattered(20000, 2);
-  SparseGrid grid;
-  ReorderScratch scratch;
-  grid.dx = Real(kDx);
-  std::vector<MaterialGroup*> groups{g.get()};
-  binParticles(groups, grid, scratch);
+  Binned bin(20000, 2);
+  auto& g = bin.g;
   // A local flow: one particle in the middle moves into the block of a particle 3 000 places on.
   auto& P = g->particles;
   const size_t from = 8000, to = 11000;
@@ -95,9 +100,9 @@ TEST(Kernels, ReorderMovesOnlyTheRangeWhereParticlesChangedBlockAndCarriesTheirS
   P.x[from] = P.x[to];
   for (size_t p = 0; p < g->size(); ++p) g->F[p] = Mat3::Identity() * P.mass[p]; // the state carries the tag too
   const std::vector<Real> before = P.mass;
-  binParticles(groups, grid, scratch);
+  bin.rebin();
   // Expected: the stable counting sort of the whole set by block.
-  BlockTopology::Lookup lookup(grid.topology);
+  BlockTopology::Lookup lookup(bin.grid.topology);
   std::vector<size_t> order(before.size());
   std::vector<Vec3> x0(before.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -112,8 +117,8 @@ TEST(Kernels, ReorderMovesOnlyTheRangeWhereParticlesChangedBlockAndCarriesTheirS
     if (P.mass[i] != before[i]) first = std::min(first, i), last = i;
   }
   // The copy spans exactly the particles that changed place: between the two, not the whole set.
-  EXPECT_EQ(scratch.perm.begin, first);
-  EXPECT_EQ(scratch.perm.end, last + 1);
+  EXPECT_EQ(bin.scratch.perm.begin, first);
+  EXPECT_EQ(bin.scratch.perm.end, last + 1);
   EXPECT_LT(last + 1 - first, 3100u);
 }
 
