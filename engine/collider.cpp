@@ -33,6 +33,13 @@ Collider Collider::face(std::string name, int axis, bool upper, double at, std::
   return c;
 }
 
+Collider Collider::panel(std::string name, int axis, bool upper, double at, std::shared_ptr<const ContactLaw> law,
+                         const Vec3d& lo, const Vec3d& hi) {
+  Collider c = face(std::move(name), axis, upper, at, std::move(law));
+  c.windowed_ = true, c.windowLo_ = lo, c.windowHi_ = hi;
+  return c;
+}
+
 Vec3d Collider::reference(double t) const {
   if (axis_ >= 0 || !motion_.moves()) return reference_;
   Mat3d R;
@@ -102,6 +109,15 @@ void Collider::gatherFace(const BlockCoord& c, double dx, const Vec4* nodes, Con
   for (int n = 0; n < kBlockNodes; ++n) {
     const int idx = o + ((n >> shift) & (kBlockDim - 1));
     if (nodes[n][0] <= Real(0) || (upper_ ? idx < limit : idx > limit)) continue;
+    if (windowed_) {
+      const Vec3d x = dx * Vec3d(c.x * kBlockDim + (n >> (2 * kBlockLog2)), c.y * kBlockDim + ((n >> kBlockLog2) & 7),
+                                 c.z * kBlockDim + (n & 7));
+      const double tol = 1e-6 * dx;
+      bool inside = true;
+      for (int a = 0; a < 3; ++a)
+        if (a != axis_) inside &= x[a] >= windowLo_[a] - tol && x[a] <= windowHi_[a] + tol;
+      if (!inside) continue;
+    }
     const int i = out.count++;
     out.node[i] = int16_t(n);
     out.contact[i].n = nrm;

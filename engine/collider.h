@@ -62,6 +62,9 @@ public:
   /// Face `axis` (0, 1, 2) of the domain box: nodes at or beyond local coordinate `at` (below it
   /// for the lower face, above it for the upper face) are in contact.
   static Collider face(std::string name, int axis, bool upper, double at, std::shared_ptr<const ContactLaw> law);
+  /// The part of that face whose nodes' two other coordinates lie within [lo, hi] (local frame).
+  static Collider panel(std::string name, int axis, bool upper, double at, std::shared_ptr<const ContactLaw> law,
+                        const Vec3d& lo, const Vec3d& hi);
 
   const std::string& name() const { return name_; }
   const ContactLaw& law() const { return *law_; }
@@ -94,6 +97,8 @@ private:
   int axis_ = -1;
   bool upper_ = false;
   double at_ = 0;
+  bool windowed_ = false;                 ///< a panel: only the nodes within [windowLo_, windowHi_]
+  Vec3d windowLo_ = Vec3d::Zero(), windowHi_ = Vec3d::Zero();
   // A solid.
   std::shared_ptr<const Sdf> sdf_;
   ColliderMotion motion_;

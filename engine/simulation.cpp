@@ -52,7 +52,8 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
 
 void Simulation::buildColliders() {
   // Order of action on a node: the terrain, structures at rest, the faces (as the walls always
-  // acted last), then moving structures, whose prescribed motion must win where they overlap.
+  // acted last; each face after its panels), then moving structures, whose prescribed motion
+  // must win where they overlap.
   auto structures = [&](bool moving) {
     for (const StructureSpec& s : settings_.structures)
       if (s.motion.moves() == moving)
@@ -68,9 +69,13 @@ void Simulation::buildColliders() {
     if (settings_.faces[size_t(f)] && !settings_.periodic[size_t(f / 2)]) {
       const int axis = f / 2;
       const bool upper = f % 2;
+      const double at = upper ? settings_.domain.max[axis] : settings_.domain.min[axis];
+      for (const PanelSpec& p : settings_.panels) // each before its face, which keeps the rest
+        if (p.face == f)
+          colliders_.push_back(std::make_unique<Collider>(
+              Collider::panel(p.name, axis, upper, at, settings_.faces[size_t(f)], p.lo, p.hi)));
       colliders_.push_back(std::make_unique<Collider>(Collider::face(
-          faceNames()[size_t(f)], axis, upper, upper ? settings_.domain.max[axis] : settings_.domain.min[axis],
-          settings_.faces[size_t(f)])));
+          faceNames()[size_t(f)], axis, upper, at, settings_.faces[size_t(f)])));
     }
   structures(true);
   for (auto& c : colliders_) colliderPtrs_.push_back(c.get());

@@ -31,6 +31,16 @@ struct StructureSpec {
   Vec3d momentPoint = Vec3d::Zero();     ///< moments are about this point (local frame, rest pose)
 };
 
+/// A part of a closed domain face whose load is reported on its own: a pressure sensor or gauge
+/// panel on a wall. It holds the face's nodes whose two in-plane coordinates lie within
+/// [lo, hi] (local frame; the normal component is ignored), acts on them with the face's law
+/// just before the face does, so the face keeps the rest and the two loads add up to the whole.
+struct PanelSpec {
+  std::string name;
+  int face = 0; ///< index into faceNames()
+  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
+};
+
 /// Names of the six domain faces, in the order of SimulationSettings::faces.
 inline const std::array<const char*, 6>& faceNames() {
   static const std::array<const char*, 6> n{"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
@@ -69,6 +79,7 @@ struct SimulationSettings {
   /// The terrain law's parameters by region (`[[terrain.regions]]`), or null: its own everywhere.
   std::shared_ptr<const ParameterField> terrainParameters;
   std::vector<StructureSpec> structures;
+  std::vector<PanelSpec> panels;    ///< on closed, non-periodic faces
   /// Periodic axes (the domain's extent along them a multiple of 8 dx; no faces there).
   std::array<bool, 3> periodic{false, false, false};
 };

@@ -78,6 +78,19 @@ TEST(StructuresInput, AStructureIsACollider) {
   EXPECT_EQ(names.back(), "dam:coulomb");
 }
 
+TEST(StructuresInput, APanelIsPartOfItsFaceAndActsJustBeforeIt) {
+  const std::string panel = "[[panels]]\nname = \"gauge\"\nface = \"x_max\"\nmin = [0, 0.2, 0.1]\nmax = [0, 0.4, 0.2]\n";
+  using V = std::vector<std::string>;
+  EXPECT_EQ(colliderNames(scene("x_max = \"sticky\"", panel)),
+            (V{"x_min:slip", "gauge:sticky", "x_max:sticky", "y_min:slip", "y_max:slip", "z_min:slip", "z_max:slip"}));
+  expectError(scene("x_max = \"open\"", panel), "panels[0].face", "x_max is open or periodic");
+  expectError(scene("", std::string(kDam) + panel + "[[panels]]\nname = \"dam\"\nface = \"x_min\"\nmin = [0, 0, 0]\nmax = [0, 1, 1]\n"),
+              "panels[1].name", "'dam' already names a collider");
+  expectError(scene("", "[[panels]]\nface = \"z_min\"\nmin = [0.31, 0, 0]\nmax = [0.39, 1, 0]\n"), "panels[0].max",
+              "holds no grid node along x");
+  expectError(scene("", "[[panels]]\nface = \"top\"\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n"), "panels[0].face", "not one of");
+}
+
 TEST(StructuresInput, NoParticleIsSeededInsideAStructure) {
   const std::string text = scene("", R"(
 [[structures]]

@@ -65,20 +65,26 @@ FrontComparison compareFront(const DamBreakResult& run, const std::string& dataF
 /// Dam break onto a wall in Marrone et al. (2011)'s layout of Buchner (2002)'s experiment: a
 /// column H high and 2H wide at one end of a tank 5.366 H long; the pressure at sensor P1 on
 /// the far wall (centred 0.2592 H above the floor) as P = p / (rho g H) against T = t sqrt(g/H).
-/// cells = cells across H. The sensor reads the mean pressure of the particles in the cell
-/// next to the wall within dx/2 of its height (a fixed window 0.1 H x 0.1 H reads 0.40 instead
-/// of 0.62 at H/dx = 20: the pressure falls steeply away from the wall, so the window shrinks
-/// toward the sensor with dx); the series is then filtered by a centred moving
-/// average over kFilterT (49 ms at H = 0.6 m; the digitised data are smooth at that scale, the
-/// impact rising over 0.3). soundSpeed: the softened water's c (m/s), 40 times the front's
-/// 2 sqrt(gH) by default; the real 1480 m/s would need 7 times more steps.
+/// cells = cells across H. Two sensors: `wall`, the force the water puts on the far wall's node
+/// rows next to P1's height (two [[panels]], each row's normal force over its dx x depth,
+/// interpolated linearly to the sensor's height; a transducer measures the force on its
+/// membrane too), and `cell`, the mean pressure of the particles in the cell next to the wall
+/// within dx/2 of that height (noisy: fewer particles, closer to the wall as dx shrinks). Each
+/// is averaged over 0.01 in T, then filtered by a centred moving average over kFilterT (49 ms at
+/// H = 0.6 m; the digitised data are smooth at that scale, the impact rising over 0.3).
+/// soundSpeed: the softened water's c (m/s), 40 times the front's 2 sqrt(gH) by default; the
+/// real 1480 m/s would need 7 times more steps.
+struct PressureSignal {
+  std::vector<double> P, PFiltered;  ///< every 0.01 in T
+  double onsetT = 0;                 ///< the first T with P >= 0.1
+  double peak = 0, peakT = 0;        ///< the impact: filtered maximum for T <= 3.3
+  double plateau = 0;                ///< mean over 3.5 <= T <= 5 (the run-up's weight)
+};
 struct WallImpactResult : RunCost {
   static constexpr double kFilterT = 0.2;
-  std::vector<double> T, P, PFiltered;  ///< every 0.01 in T
-  double onsetT = 0, onsetTExp = 0;     ///< the first T with P >= 0.1
-  double peak = 0, peakT = 0;           ///< the impact: filtered maximum for T <= 3.3
-  double peakExp = 0, peakTExp = 0;     ///< the same from the digitised data
-  double plateau = 0, plateauExp = 0;   ///< mean over 3.5 <= T <= 5 (the run-up's weight)
+  std::vector<double> T;
+  PressureSignal wall, cell;          ///< the two sensors (above)
+  PressureSignal exp;                 ///< the digitised data (onset, peak, plateau; P and PFiltered empty)
 };
 WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r, double soundSpeed = 200);
 /// Quasi-2-D granular column collapse (phi 32, rough bed mu 0.625) of a column a L0 high and L0

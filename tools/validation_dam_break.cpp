@@ -121,16 +121,33 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   const auto data = readPairs(pressureFile);
   // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
   const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
-  const std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H), soundSpeed);
+  const double tScale = std::sqrt(g / H), pScale = 1000 * g * H, zSensor = 0.2592 * H;
+  // The far wall's node rows below and above the sensor (the domain's corner is a node), each a
+  // panel across the whole depth, nodes outside the flume included.
+  const double zBelow = std::floor(zSensor / dx) * dx, w = (zSensor - zBelow) / dx;
+  std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H), soundSpeed);
+  for (const double z : {zBelow, zBelow + dx})
+    toml += format("[[panels]]\nname = \"row%.0f\"\nface = \"x_max\"\nmin = [0, -1, %.9g]\nmax = [0, %.9g, %.9g]\n",
+                   z / dx, z - 0.25 * dx, depth + 1, z + 0.25 * dx);
   WallImpactResult res;
   auto sim = build(toml, r, res);
+  size_t below = 0;
+  while (sim->colliders()[below]->name() != format("row%.0f", zBelow / dx)) ++below;
   const auto t0 = Clock::now();
-  const double tScale = std::sqrt(g / H), pScale = 1000 * g * H, zSensor = 0.2592 * H;
   const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
   std::vector<float> pressure;
+  double impulse[2] = {0, 0}, tLast = 0; // each row's normal impulse since the last sample (N s)
+  auto onStep = [&] {
+    const double dt = sim->time() - tLast;
+    tLast = sim->time();
+    for (int k = 0; k < 2; ++k) impulse[k] += dt * sim->colliderLoads()[below + size_t(k)].force.x();
+  };
   for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
-    const double T = 0.01 * i;
-    sim->advanceTo(T / tScale);
+    const double T = 0.01 * i, tStart = sim->time();
+    sim->advanceTo(T / tScale, onStep);
+    const double span = sim->time() - tStart, area = dx * depth;
+    res.wall.P.push_back(span > 0 ? ((1 - w) * impulse[0] + w * impulse[1]) / span / area / pScale : 0.0);
+    impulse[0] = impulse[1] = 0;
     double sum = 0;
     size_t n = 0;
     for (const auto* grp : sim->groups()) {
@@ -141,30 +158,32 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
           sum += pressure[p], ++n;
       }
     }
-    res.T.push_back(T), res.P.push_back(n ? sum / double(n) / pScale : 0.0);
+    res.T.push_back(T), res.cell.P.push_back(n ? sum / double(n) / pScale : 0.0);
   }
+  finish(*sim, t0, res);
   const int half = int(std::lround(0.5 * WallImpactResult::kFilterT / 0.01));
-  const int count = int(res.P.size());
-  double plateauN = 0;
-  for (int i = 0; i < count; ++i) {
-    double s = 0;
-    int n = 0;
-    for (int j = std::max(0, i - half); j <= std::min(count - 1, i + half); ++j) s += res.P[size_t(j)], ++n;
-    res.PFiltered.push_back(s / n);
-    const double T = res.T[size_t(i)], P = res.PFiltered.back();
-    if (T <= 3.3 && P > res.peak) res.peak = P, res.peakT = T;
-    if (res.onsetT == 0 && P >= 0.1) res.onsetT = T;
-    if (T >= 3.5 && T <= 5.0) res.plateau += P, plateauN += 1;
+  for (PressureSignal* s : {&res.wall, &res.cell}) {
+    const int count = int(s->P.size());
+    double plateauN = 0;
+    for (int i = 0; i < count; ++i) {
+      double sum = 0;
+      int n = 0;
+      for (int j = std::max(0, i - half); j <= std::min(count - 1, i + half); ++j) sum += s->P[size_t(j)], ++n;
+      s->PFiltered.push_back(sum / n);
+      const double T = res.T[size_t(i)], P = s->PFiltered.back();
+      if (T <= 3.3 && P > s->peak) s->peak = P, s->peakT = T;
+      if (s->onsetT == 0 && P >= 0.1) s->onsetT = T;
+      if (T >= 3.5 && T <= 5.0) s->plateau += P, plateauN += 1;
+    }
+    s->plateau /= std::max(1.0, plateauN);
   }
-  res.plateau /= std::max(1.0, plateauN);
   double plateauExpN = 0;
   for (const auto& [T, P] : data) {
-    if (T <= 3.3 && P > res.peakExp) res.peakExp = P, res.peakTExp = T;
-    if (res.onsetTExp == 0 && P >= 0.1) res.onsetTExp = T;
-    if (T >= 3.5 && T <= 5.0) res.plateauExp += P, plateauExpN += 1;
+    if (T <= 3.3 && P > res.exp.peak) res.exp.peak = P, res.exp.peakT = T;
+    if (res.exp.onsetT == 0 && P >= 0.1) res.exp.onsetT = T;
+    if (T >= 3.5 && T <= 5.0) res.exp.plateau += P, plateauExpN += 1;
   }
-  res.plateauExp /= std::max(1.0, plateauExpN);
-  finish(*sim, t0, res);
+  res.exp.plateau /= std::max(1.0, plateauExpN);
   return res;
 }
 

@@ -92,13 +92,15 @@ std::vector<Case> cases(const std::string& shared) {
                  {10, 20, 40},
                  {10}});
     c.push_back({"wall_impact", "dam break onto a wall, sensor P1 against Buchner (2002), c = 200 m/s",
-                 "|P_peak/P_peak,exp − 1| of the impact (T ≤ 3.3), 0.2 moving average", "cells across the column height H",
+                 "|P_peak/P_peak,exp − 1| of the impact (T ≤ 3.3) from the wall's load at P1's height ([[panels]]), 0.2 moving average", "cells across the column height H",
                  [dir](const Resolution& res) {
                    const auto r = wallImpact(dir + "buchner2002_pressure_P1_trixiparticles.csv", res);
-                   Point p = fromCost(res.cells, std::abs(r.peak / r.peakExp - 1), r);
-                   p.detail = fmt("onset T %.2f", r.onsetT) + fmt(" (%.2f)", r.onsetTExp) + fmt(", peak %.3f", r.peak) +
-                              fmt(" at %.2f", r.peakT) + fmt(" (%.3f", r.peakExp) + fmt(" at %.2f)", r.peakTExp) +
-                              fmt(", plateau %.3f", r.plateau) + fmt(" (%.3f)", r.plateauExp);
+                   Point p = fromCost(res.cells, std::abs(r.wall.peak / r.exp.peak - 1), r);
+                   for (const auto& [name, s] : {std::pair{"wall", &r.wall}, std::pair{"; cell", &r.cell}})
+                     p.detail += name + fmt(": onset T %.2f", s->onsetT) + fmt(", peak %.3f", s->peak) +
+                                 fmt(" at %.2f", s->peakT) + fmt(", plateau %.3f", s->plateau);
+                   p.detail += fmt(" (Buchner onset %.2f", r.exp.onsetT) + fmt(", peak %.3f", r.exp.peak) +
+                               fmt(" at %.2f", r.exp.peakT) + fmt(", plateau %.3f)", r.exp.plateau);
                    return p;
                  },
                  {10, 20, 30},

@@ -308,6 +308,7 @@ SceneSetup buildScene(const ConfigTable& root, const SeedSlice& slice) {
   const bool jitterGiven = sim->has("jitter");
   const double jitter = sim->inRange("jitter", 0, 0, 1);
   readStructures(root, s.settings, s.notes);
+  readPanels(root, s.settings);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
   readOutput(root, s);
   s.ensemble = readEnsembleSettings(root.table("ensemble"),

@@ -79,4 +79,30 @@ void readStructures(const ConfigTable& root, SimulationSettings& s, std::vector<
   }
 }
 
+void readPanels(const ConfigTable& root, SimulationSettings& s) {
+  const auto tables = root.tables("panels");
+  for (size_t i = 0; i < tables.size(); ++i) {
+    const ConfigTable& t = *tables[i];
+    PanelSpec p;
+    p.name = t.string("name", "panels[" + std::to_string(i) + "]");
+    bool taken = p.name == "terrain";
+    for (const char* face : faceNames()) taken |= p.name == face;
+    for (const auto& other : s.structures) taken |= other.name == p.name;
+    for (const auto& other : s.panels) taken |= other.name == p.name;
+    if (taken) t.fail("name", "'" + p.name + "' already names a collider (the terrain, a face, a structure or a panel)");
+    const std::string face = t.choice("face", "", {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"});
+    p.face = int(std::find_if(faceNames().begin(), faceNames().end(), [&](const char* f) { return face == f; }) -
+                 faceNames().begin());
+    if (!s.faces[size_t(p.face)])
+      t.fail("face", face + " is open or periodic: a panel needs a closed face to be part of");
+    p.lo = t.vec3("min") - s.origin, p.hi = t.vec3("max") - s.origin;
+    // The panel holds the face's nodes inside it: at least one along each in-plane axis.
+    for (int a = 0; a < 3; ++a)
+      if (a != p.face / 2 && std::ceil(p.lo[a] / s.dx - 1e-6) > std::floor(p.hi[a] / s.dx + 1e-6))
+        t.fail("max", std::string("the panel holds no grid node along ") + "xyz"[a] + " (dx " + std::to_string(s.dx) +
+                          " m): make it reach a node plane or widen it");
+    s.panels.push_back(std::move(p));
+  }
+}
+
 } // namespace talus
