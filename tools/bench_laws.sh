@@ -1,5 +1,5 @@
 #!/bin/bash
-# The cost of the basal laws and of mu(I) (docs/performance.md, "Cost of the flow laws"): a
+# The cost of the basal laws and of mu(I) (docs/throughput.md, "Cost of the flow laws"): a
 # 160 000-particle granular layer sliding down a 30-degree bed, 0.3 s at 1 thread, once per law.
 #   bash tools/bench_laws.sh [path/to/talus]
 set -euo pipefail
