@@ -66,9 +66,9 @@ FrontComparison compareFront(const DamBreakResult& run, const std::string& dataF
 /// column H high and 2H wide at one end of a tank 5.366 H long; the pressure at sensor P1 on
 /// the far wall (centred 0.2592 H above the floor) as P = p / (rho g H) against T = t sqrt(g/H).
 /// cells = cells across H. Two sensors: `wall`, the force the water puts on the far wall's node
-/// rows next to P1's height (two [[panels]], each row's normal force over its dx x depth,
-/// interpolated linearly to the sensor's height; a transducer measures the force on its
-/// membrane too), and `cell`, the mean pressure of the particles in the cell next to the wall
+/// rows within 2 dx of P1's height ([[panels]], each row's normal force over its dx x depth,
+/// weighted by a tent of half-width 2 dx; a transducer measures the force on its membrane too),
+/// and `cell`, the mean pressure of the particles in the cell next to the wall
 /// within dx/2 of that height (noisy: fewer particles, closer to the wall as dx shrinks). Each
 /// is averaged over 0.01 in T, then filtered by a centred moving average over kFilterT (49 ms at
 /// H = 0.6 m; the digitised data are smooth at that scale, the impact rising over 0.3).

@@ -122,32 +122,42 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
   const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
   const double tScale = std::sqrt(g / H), pScale = 1000 * g * H, zSensor = 0.2592 * H;
-  // The far wall's node rows below and above the sensor (the domain's corner is a node), each a
-  // panel across the whole depth, nodes outside the flume included.
-  const double zBelow = std::floor(zSensor / dx) * dx, w = (zSensor - zBelow) / dx;
+  // The far wall's node rows within 2 dx of the sensor's height (the domain's corner is a node),
+  // each a panel across the whole depth, nodes outside the flume included, weighted by a tent
+  // of half-width 2 dx: the wall's load alternates between neighbouring rows (the particles'
+  // lattice against the nodes; test ColliderLoads.AWallPanelOnAJetsAxis...), and a tent two rows
+  // wide cancels that alternation at any offset of the sensor from the rows.
   std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H), soundSpeed);
-  for (const double z : {zBelow, zBelow + dx})
-    toml += format("[[panels]]\nname = \"row%.0f\"\nface = \"x_max\"\nmin = [0, -1, %.9g]\nmax = [0, %.9g, %.9g]\n",
-                   z / dx, z - 0.25 * dx, depth + 1, z + 0.25 * dx);
+  std::vector<std::pair<int, double>> rows; // row index, weight
+  double weights = 0;
+  for (int j = int(std::ceil(zSensor / dx - 2)); j <= int(std::floor(zSensor / dx + 2)); ++j) {
+    const double w = 1 - std::abs(j * dx - zSensor) / (2 * dx);
+    if (w <= 0) continue;
+    rows.emplace_back(j, w), weights += w;
+    toml += format("[[panels]]\nname = \"row%d\"\nface = \"x_max\"\nmin = [0, -1, %.9g]\nmax = [0, %.9g, %.9g]\n", j,
+                   (j - 0.25) * dx, depth + 1, (j + 0.25) * dx);
+  }
   WallImpactResult res;
   auto sim = build(toml, r, res);
-  size_t below = 0;
-  while (sim->colliders()[below]->name() != format("row%.0f", zBelow / dx)) ++below;
+  std::vector<size_t> panel;
+  for (const auto& [j, w] : rows)
+    for (size_t k = 0; k < sim->colliders().size(); ++k)
+      if (sim->colliders()[k]->name() == format("row%d", j)) panel.push_back(k);
   const auto t0 = Clock::now();
   const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
   std::vector<float> pressure;
-  double impulse[2] = {0, 0}, tLast = 0; // each row's normal impulse since the last sample (N s)
+  double impulse = 0, tLast = 0; // the rows' weighted normal impulse since the last sample (N s)
   auto onStep = [&] {
     const double dt = sim->time() - tLast;
     tLast = sim->time();
-    for (int k = 0; k < 2; ++k) impulse[k] += dt * sim->colliderLoads()[below + size_t(k)].force.x();
+    for (size_t i = 0; i < rows.size(); ++i) impulse += dt * rows[i].second * sim->colliderLoads()[panel[i]].force.x();
   };
   for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
     const double T = 0.01 * i, tStart = sim->time();
     sim->advanceTo(T / tScale, onStep);
     const double span = sim->time() - tStart, area = dx * depth;
-    res.wall.P.push_back(span > 0 ? ((1 - w) * impulse[0] + w * impulse[1]) / span / area / pScale : 0.0);
-    impulse[0] = impulse[1] = 0;
+    res.wall.P.push_back(span > 0 ? impulse / weights / span / area / pScale : 0.0);
+    impulse = 0;
     double sum = 0;
     size_t n = 0;
     for (const auto* grp : sim->groups()) {

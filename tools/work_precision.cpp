@@ -298,7 +298,7 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        "  Koshizuka & Oka by up to 22 % at every resolution (the experiments' late start). The wall\n"
        "  pressure needs water at c ≥ 40 times the front speed. The particles in the wall cell put the\n"
        "  impact peak within 15 % of Buchner's at H/dx = 10 and 20, but the wall's own load (the\n"
-       "  momentum it removes, the error above) has no impact peak and a plateau 28–39 % short:\n"
+       "  momentum it removes, the error above) has no impact peak and a plateau 27–30 % short:\n"
        "  the goal is not met by the force (docs/convergence.md).\n"
        "- **Granular collapses**: the continuous deposit's far end converges where the front does not\n"
        "  fragment (a = 5, 10: two finest levels within 3 %), to Lajeunesse's law rather than Lube's\n"
