@@ -90,7 +90,7 @@ void readPanels(const ConfigTable& root, SimulationSettings& s) {
     for (const auto& other : s.structures) taken |= other.name == p.name;
     for (const auto& other : s.panels) taken |= other.name == p.name;
     if (taken) t.fail("name", "'" + p.name + "' already names a collider (the terrain, a face, a structure or a panel)");
-    const std::string face = t.choice("face", "", {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"});
+    const std::string face = t.choice("face", "", {faceNames().begin(), faceNames().end()});
     p.face = int(std::find_if(faceNames().begin(), faceNames().end(), [&](const char* f) { return face == f; }) -
                  faceNames().begin());
     if (!s.faces[size_t(p.face)])
