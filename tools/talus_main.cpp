@@ -149,6 +149,8 @@ int main(int argc, char** argv) {
   wpCmd->add_flag("--fbar", singleRes.fbar, "F-bar for --single");
   wpCmd->add_option("--bed-offset", singleRes.bedOffset, "Column collapses: bed raised by this many cells (--single)")
       ->check(CLI::Range(0.0, 1.0));
+  wpCmd->add_option("--sound-speed", singleRes.soundSpeed, "Water cases: the softened water's c in m/s (--single)")
+      ->check(CLI::PositiveNumber);
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");

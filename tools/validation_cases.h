@@ -15,6 +15,7 @@ struct Resolution {
   double flip = 0; ///< AFLIP blend (0: APIC)
   bool fbar = false; ///< F-bar ([simulation] fbar)
   double bedOffset = 0; ///< column collapse: its bed raised by this many cells off the node plane
+  double soundSpeed = 0; ///< water cases: the softened water's c (m/s); 0: the case's own
 };
 
 /// What every run reports, besides its error.

@@ -78,7 +78,8 @@ DamBreakResult damBreak(const Resolution& r) {
   // a = 0.1 m (Froude scaling), two cells across the flume, water softened to c = 30 m/s
   // (ten times the peak speed 2 sqrt(2 g a)); the flume is long enough for Z = 9.
   const double a = 0.1, dx = a / r.cells, depth = 2 * dx, zMax = FrontComparison::kSpeedZ[1];
-  const std::string toml = waterColumnScene(dx, Vec3d((zMax + 1) * a, depth, 0.25), Vec3d(a, depth, 2 * a), 30);
+  const std::string toml = waterColumnScene(dx, Vec3d((zMax + 1) * a, depth, 0.25), Vec3d(a, depth, 2 * a),
+                                            r.soundSpeed > 0 ? r.soundSpeed : 30);
   DamBreakResult res;
   auto sim = build(toml, r, res);
   const auto t0 = Clock::now();
@@ -127,7 +128,8 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   // of half-width 2 dx: the wall's load alternates between neighbouring rows (the particles'
   // lattice against the nodes; test ColliderLoads.AWallPanelOnAJetsAxis...), and a tent two rows
   // wide cancels that alternation at any offset of the sensor from the rows.
-  std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H), soundSpeed);
+  std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H),
+                                      r.soundSpeed > 0 ? r.soundSpeed : soundSpeed);
   std::vector<std::pair<int, double>> rows; // row index, weight
   double weights = 0;
   for (int j = int(std::ceil(zSensor / dx - 2)); j <= int(std::floor(zSensor / dx + 2)); ++j) {
