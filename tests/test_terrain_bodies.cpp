@@ -306,5 +306,8 @@ TEST(TerrainBodies, ThinReleasesAreWarnedAboutWithTheirThicknessInCells) {
               fine.bodies[0].particles, expected);
   EXPECT_GT(fine.bodies[0].particles, 6 * coarse.bodies[0].particles);
   EXPECT_NEAR(fine.bodies[0].seededVolume, expected, 0.03 * expected);
-  EXPECT_EQ(warnings(fine).size(), 1u) << "still thinner than a cell: the warning stays";
+  const auto wf = warnings(fine);
+  ASSERT_EQ(wf.size(), 1u) << "still thinner than a cell: the warning stays";
+  EXPECT_NE(w[0].find("particles_per_cell = 64 on the body (now 8)"), std::string::npos) << "the remedy is offered";
+  EXPECT_NE(wf[0].find("its 64 particles per cell"), std::string::npos) << "the remedy is acknowledged, not offered again";
 }

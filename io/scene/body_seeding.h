@@ -21,6 +21,7 @@ struct BodyReport {
   double seededVolume = 0;    ///< particles * dx^3 / ppc
   double geometricVolume = 0; ///< of the shape (before terrain clipping)
   double meanThickness = 0;   ///< terrain bodies: vertical, volume / plan area (m); 0 otherwise
+  int particlesPerCell = 0;   ///< terrain bodies: the seeding's (the body's own or the scene's)
 };
 
 /// Below this many cells across its mean thickness a released body's peak flow heights lose
