@@ -73,7 +73,7 @@ FrontComparison compareFront(const DamBreakResult& run, const std::string& dataF
 /// within dx/2 of that height (noisy: fewer particles, closer to the wall as dx shrinks). Each
 /// is averaged over 0.01 in T, then filtered by a centred moving average over kFilterT (49 ms at
 /// H = 0.6 m; the digitised data are smooth at that scale, the impact rising over 0.3).
-/// soundSpeed: the softened water's c (m/s), 40 times the front's 2 sqrt(gH) by default; the
+/// The softened water's c is r.soundSpeed, or 200 m/s (40 times the front's 2 sqrt(gH)); the
 /// real 1480 m/s would need 7 times more steps.
 struct PressureSignal {
   std::vector<double> P, PFiltered;  ///< every 0.01 in T
@@ -87,7 +87,7 @@ struct WallImpactResult : RunCost {
   PressureSignal wall, cell;          ///< the two sensors (above)
   PressureSignal exp;                 ///< the digitised data (onset, peak, plateau; P and PFiltered empty)
 };
-WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r, double soundSpeed = 200);
+WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r);
 /// Quasi-2-D granular column collapse (phi 32, rough bed mu 0.625) of a column a L0 high and L0
 /// long, run-out (L_inf - L0)/L0 against Lube et al. (2005): 1.2 a for a < 1.8, 1.9 a^(2/3)
 /// for a > 2.8 and between the two laws in their transition; Lajeunesse et al. (2005), as

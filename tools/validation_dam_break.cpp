@@ -118,7 +118,7 @@ FrontComparison compareFront(const DamBreakResult& run, const std::string& dataF
   return c;
 }
 
-WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r, double soundSpeed) {
+WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r) {
   const auto data = readPairs(pressureFile);
   // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
   const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
@@ -129,7 +129,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   // lattice against the nodes; test ColliderLoads.AWallPanelOnAJetsAxis...), and a tent two rows
   // wide cancels that alternation at any offset of the sensor from the rows.
   std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H),
-                                      r.soundSpeed > 0 ? r.soundSpeed : soundSpeed);
+                                      r.soundSpeed > 0 ? r.soundSpeed : 200);
   std::vector<std::pair<int, double>> rows; // row index, weight
   double weights = 0;
   for (int j = int(std::ceil(zSensor / dx - 2)); j <= int(std::floor(zSensor / dx + 2)); ++j) {
