@@ -144,6 +144,10 @@ TEST(OutputConfig, BadValuesNameFileLineAndKey) {
   expectError("[[output.paths]]\nname = \"p\"\npoints = [[0, 0], [1, 0]]\n[[output.paths]]\nname = \"p\"\n"
               "points = [[0, 0], [1, 0]]\n",
               kFirst + 4, "output.paths[1].name", "duplicate");
+  expectError("[[output.gauges]]\npoint = [1, 2, 3]\n", kFirst + 1, "output.gauges[0].point", "expected [x, y]");
+  expectError("[[output.gauges]]\npoint = [1, 2]\nradius = 0\n", kFirst + 2, "output.gauges[0].radius", "positive");
+  expectError("[output]\nseries = false\n[[output.gauges]]\npoint = [1, 1]\n", kFirst + 1, "output.series",
+              "need series = true");
   expectError("[output]\nseries = false\n[[output.sections]]\npoints = [[0, 0], [1, 0]]\n", kFirst + 1,
               "output.series", "need series = true");
 }

@@ -113,6 +113,45 @@ struct ColumnCollapseResult : RunCost {
 };
 ColumnCollapseResult columnCollapse(double aspect, const Resolution& r, GranularModel model = GranularModel::DruckerPrager);
 
+/// A granular slide into still water in a quasi-2-D flume (Fritz, Hager & Minor 2004's set-up):
+/// the largest wave against Heller & Hager (2010, VAW-Mitteilung 211; J. Waterway Port Coastal
+/// Ocean Eng. 136(3):145), whose impulse product P = F S^(1/2) M^(1/4) cos(6 alpha / 7)^(1/2),
+/// F = V_s / sqrt(g h), S = s / h, M = m_s / (rho_w b h^2), predicts a_M / h = 4/9 P^0.8,
+/// H_M / h = 5/9 P^0.8, x_M / h = 11/2 P^(1/2), T_M sqrt(g / h) = 9 P^(1/2) and beyond x_M
+/// H / h = 3/4 (P X^(-1/3))^0.8. Water h = 0.3 m; the slide a rectangle of thickness s and length
+/// L_s along a ramp of angle alpha, its lower front edge at the still-water line, moving at V_s
+/// (its centroid's velocity at impact, as Heller & Hager define it); Fritz's PP-BaSO4 granulate:
+/// bulk density 1620 kg/m3, friction angle 43 degrees, 24 degrees of bed friction on the ramp and
+/// the floor. cells = cells across h.
+struct ImpulseWaveCase {
+  const char* name;
+  double alphaDeg, F, S;
+  double slideLength; ///< L_s / h
+  /// M and P of the configuration (M from the slide's cross-section: rho_s s L_s / (rho_w h^2)).
+  double M() const;
+  double P() const;
+};
+/// The five configurations of `talus work-precision`: P from 0.4 to 5, alpha 30 to 90 degrees,
+/// all inside Heller & Hager's ranges (F 0.86-6.83, S 0.09-1.64, M 0.11-10.02, alpha 30-90).
+const std::vector<ImpulseWaveCase>& impulseWaveCases();
+struct ImpulseWaveResult : RunCost {
+  double P = 0, soundSpeed = 0;
+  std::vector<double> X;             ///< gauge positions x / h from the still-water shoreline
+  std::vector<double> crest, height; ///< per gauge: largest crest a_c / h and leading wave height H / h
+  std::vector<double> crestT;        ///< per gauge: T = t sqrt(g/h) of the largest crest
+  double aM = 0, HM = 0, xM = 0, TM = 0; ///< simulated (x_M: the gauge of H_M; T_M sqrt(g/h) there)
+  double aMRef = 0, HMRef = 0, xMRef = 0, TMRef = 0; ///< Heller & Hager's
+  double decayError = 0; ///< mean |H / H_ref(X) - 1| over the gauges beyond x_M
+  double decayExponent = 0; ///< least-squares slope of ln H against ln X beyond x_M (H & H: -0.8/3)
+  /// The slide's mean velocity when its centroid reaches the still-water shoreline (L_s/2 after
+  /// the front did), over V_s: the slide accelerates on the ramp while it enters, and a P taken at
+  /// that instant is P times this ratio.
+  double centroidSpeedRatio = 0;
+  double lostWater = 0;  ///< share of the water's mass that left the domain (splash over the top)
+};
+/// Runs one configuration; r.soundSpeed overrides the water's c (default max(20 sqrt(gh), 8 V_s)).
+ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r);
+
 /// A one-cell-thick elastic layer (dx = 5 m, one particle per cell, 5 m thick at z = 500 m) over
 /// a layerSide square in a domainSide x domainSide x domainHeight box: what the sparse grid must
 /// store in proportion to the layer, not the box (test_sparse_grid, `talus work-precision`).

@@ -116,6 +116,23 @@ std::vector<Case> cases(const std::string& shared) {
                  {10, 20, 30},
                  {10}});
   }
+  // Slides into still water against Heller & Hager (2010), at two resolutions 1.5 apart.
+  for (const ImpulseWaveCase& w : impulseWaveCases())
+    c.push_back({std::string("impulse_wave_") + w.name,
+                 fmt("granular slide into water (P = %.2f", w.P()) + fmt(", α = %g°) against Heller & Hager (2010)", w.alphaDeg),
+                 "|a_M / (4/9 P^0.8) − 1|, the largest crest over the gauges at x/h = 1–15", "cells across the water depth h",
+                 [w](const Resolution& res) {
+                   const auto r = impulseWave(w, res);
+                   Point p = fromCost(res.cells, std::abs(r.aM / r.aMRef - 1), r);
+                   p.detail = fmt("P %.3f", r.P) + fmt(", c %.0f m/s", r.soundSpeed) + fmt(": a_M/h %.3f", r.aM) + fmt(" (%.3f)", r.aMRef) +
+                              fmt(", H_M/h %.3f", r.HM) + fmt(" (%.3f)", r.HMRef) + fmt(", x_M/h %.1f", r.xM) +
+                              fmt(" (%.1f)", r.xMRef) + fmt(", T_M %.1f", r.TM) + fmt(" (%.1f)", r.TMRef) +
+                              fmt(", decay beyond x_M %.3f", r.decayError) + fmt(" (exponent %.3f, H&H -0.267)", r.decayExponent) +
+                              fmt(", V at centroid impact / V_s %.3f", r.centroidSpeedRatio) + fmt(", water lost %.4f", r.lostWater);
+                   return p;
+                 },
+                 {8, 12},
+                 {8}});
   // Planar collapses at the aspect ratios of issue 14, rate-independent and mu(I).
   for (const auto& [modelName, suffix] :
        {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})

@@ -41,6 +41,14 @@ struct ProbeSpec {
   std::vector<std::string> materials; ///< empty = all
 };
 
+/// A wave gauge ([[output.gauges]]): the water's surface elevation at a point of world xy
+/// (io/output/water_gauges.h).
+struct GaugeSpec {
+  std::string name;
+  Eigen::Vector2d point = Eigen::Vector2d::Zero(); ///< world xy (m)
+  double radius = 0; ///< half-width of the square footprint (m); 0 = one grid cell
+};
+
 /// AvaFrame peak files (peakFiles/<simName>_pft.asc ...) written from the hazard maps; the name
 /// parts follow AvaFrame's simName (io/output/peak_files.h, docs/hazard.md).
 struct PeakFileSettings {
@@ -85,6 +93,7 @@ struct OutputSettings {
   std::vector<SectionSpec> sections;
   std::vector<PathSpec> paths;
   std::vector<ProbeSpec> probes;
+  std::vector<GaugeSpec> gauges;
   MapSettings maps;
 
   /// Whether an output reads the particles after every step (the series and the maps; frame

@@ -214,6 +214,7 @@ std::vector<std::string> writeSeriesPlots(const std::string& outDir, const Serie
   plot("loads", "Force on colliders (mean over each row's interval)", "force (kN)", kiloNewton(byPrefix(t, "force_N"), true));
   plot("max_loads", "Largest force of a step on colliders", "force (kN)", kiloNewton(byPrefix(t, "max_force_N"), true));
   plot("water_surface", "Highest water surface", "elevation (m)", byPrefix(t, "max_water_surface_m"));
+  plot("gauges", "Water surface at the gauges", "elevation (m)", byPrefix(t, "water_surface_m_"));
   return files;
 }
 

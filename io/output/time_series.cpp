@@ -6,6 +6,7 @@
 #include "io/output/probe_tracker.h"
 #include "io/output/section_discharge.h"
 #include "io/output/series_plots.h"
+#include "io/output/water_gauges.h"
 
 #include <cmath>
 #include <cstdio>
@@ -67,14 +68,7 @@ private:
 class WaterSurfaceColumns final : public SeriesColumns {
 public:
   explicit WaterSurfaceColumns(std::vector<std::string> names) : names_(std::move(names)) {}
-  void onStart(const Simulation& sim) override {
-    water_.clear();
-    for (const auto* g : sim.groups()) {
-      bool listed = false;
-      for (const auto& n : names_) listed |= n == g->name();
-      if (names_.empty() ? std::string(g->modelName()) == "water" : listed) water_.push_back(g);
-    }
-  }
+  void onStart(const Simulation& sim) override { water_ = waterGroups(sim, names_); }
   bool any() const { return !water_.empty(); }
   std::vector<std::string> header() const override { return {"max_water_surface_m"}; }
   void sample(const Simulation& sim, double, std::vector<double>& row) override {
@@ -97,6 +91,7 @@ TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTi
   for (const auto& sec : s.sections) columns_.push_back(std::make_unique<SectionDischarge>(sec));
   for (const auto& p : s.paths) columns_.push_back(std::make_unique<FrontTracker>(p, particleSpacing));
   for (const auto& p : s.probes) columns_.push_back(std::make_unique<ProbeTracker>(p));
+  if (!s.gauges.empty()) columns_.push_back(std::make_unique<WaterGauges>(s.gauges, s.waterMaterials, particleSpacing));
   if (s.loads) {
     auto loads = std::make_unique<ColliderLoadColumns>();
     loads_ = loads.get();

@@ -149,8 +149,22 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
     p.materials = readMaterialList(t, "materials", materialNames);
     s.probes.push_back(p);
   }
-  if ((!s.sections.empty() || !s.paths.empty() || !s.probes.empty()) && !s.series)
-    out->fail("series", "sections, paths and probes are columns of series.csv: they need series = true");
+  used.clear();
+  const auto gauges = out->tables("gauges");
+  for (size_t i = 0; i < gauges.size(); ++i) {
+    const ConfigTable& t = *gauges[i];
+    GaugeSpec g;
+    g.name = readName(t, "gauge" + std::to_string(i), used);
+    const auto xy = t.numbers("point");
+    if (xy.size() != 2) t.fail("point", "expected [x, y], the gauge's position in world coordinates (m)");
+    for (double v : xy)
+      if (!std::isfinite(v)) t.fail("point", "must contain finite numbers");
+    g.point = Eigen::Vector2d(xy[0], xy[1]);
+    g.radius = t.positive("radius", 0);
+    s.gauges.push_back(g);
+  }
+  if ((!s.sections.empty() || !s.paths.empty() || !s.probes.empty() || !s.gauges.empty()) && !s.series)
+    out->fail("series", "sections, paths, probes and gauges are columns of series.csv: they need series = true");
   return s;
 }
 
