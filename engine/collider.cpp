@@ -40,6 +40,22 @@ Collider Collider::panel(std::string name, int axis, bool upper, double at, std:
   return c;
 }
 
+double Collider::panelArea(double dx, const Vec3d& lo, const Vec3d& hi) const {
+  if (!windowed_) return 0;
+  double area = 1;
+  const double tol = 1e-6 * dx;
+  for (int a = 0; a < 3; ++a) {
+    if (a == axis_) continue;
+    // The nodes gatherFace takes on this axis, each with its cell around it clipped to the domain.
+    const double from = std::max(windowLo_[a], lo[a]), to = std::min(windowHi_[a], hi[a]);
+    double width = 0;
+    for (long j = long(std::ceil((from - tol) / dx)); double(j) * dx <= to + tol; ++j)
+      width += std::max(0.0, std::min(hi[a], (double(j) + 0.5) * dx) - std::max(lo[a], (double(j) - 0.5) * dx));
+    area *= width;
+  }
+  return area;
+}
+
 Vec3d Collider::reference(double t) const {
   if (axis_ >= 0 || !motion_.moves()) return reference_;
   Mat3d R;

@@ -68,6 +68,17 @@ public:
 
   const std::string& name() const { return name_; }
   const ContactLaw& law() const { return *law_; }
+  /// A panel: a window of a domain face (Collider::panel).
+  bool isPanel() const { return windowed_; }
+  /// A face or panel's outward normal axis and side: the material pushes along +axis on the
+  /// upper face. -1 for a solid.
+  int faceAxis() const { return axis_; }
+  bool faceUpper() const { return upper_; }
+  /// A panel's area on the face: the tributary area of the node rows and columns it takes
+  /// (dx each, half at the domain's edge, which [lo, hi], the domain box in the local frame,
+  /// bounds). A node row of a face between two walls d apart has area dx d, so a still water's
+  /// pressure on it is its load over this area. 0 for anything but a panel.
+  double panelArea(double dx, const Vec3d& lo, const Vec3d& hi) const;
   bool moves() const { return motion_.moves(); }
   /// Reference point of the moments at time t (local frame).
   Vec3d reference(double t) const;

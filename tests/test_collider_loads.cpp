@@ -2,9 +2,11 @@
 // momentum its contacts remove. Checked against statics (a block's weight, water's pressure on
 // a wall's node rows), a momentum flux (a water jet on a wall) and a prescribed motion (a moving
 // wall pushing a granular heap).
+#include "io/output/collider_loads.h"
 #include "test_support.h"
 
 #include <cmath>
+#include <algorithm>
 #include <gtest/gtest.h>
 
 using namespace talus;
@@ -236,6 +238,38 @@ TEST(ColliderLoads, WallPanelsReadTheHydrostaticPressureOfTheirNodeRows) {
   EXPECT_NEAR(rows + face, opposite, 1e-3 * opposite);
   EXPECT_NEAR(rows + face, 0.5 * rho * g * h * h * depth, 0.015 * 0.5 * rho * g * h * h * depth);
   EXPECT_GT(face, 0.0);
+}
+
+TEST(ColliderLoads, APanelsSeriesColumnsAreItsLoadAsAPressureOverItsArea) {
+  // The same tank through the series' load columns: each panel's mean normal force over its area
+  // (one node row across the 0.1 m depth: dx x depth, the edge nodes' half cells included) is
+  // the still water's pressure rho g (h - z), within the row loads' 2 % above.
+  auto sim = test::makeSimulation(kTank);
+  const double rho = 1000, g = 9.81, h = 0.2, dx = 0.02, depth = 0.1;
+  ColliderLoadColumns loads;
+  loads.onStart(*sim);
+  const std::vector<std::string> header = loads.header();
+  sim->advanceTo(0.9);
+  double tLast = sim->time();
+  sim->advanceTo(1.0, [&] {
+    loads.onStep(*sim, sim->time() - tLast);
+    tLast = sim->time();
+  });
+  std::vector<double> row;
+  loads.sample(*sim, 0.1, row);
+  ASSERT_EQ(row.size(), header.size());
+  for (const auto& [name, z] : {std::pair{"row2", 0.04}, std::pair{"row5", 0.1}}) {
+    const auto& c = *sim->colliders()[colliderIndex(*sim, name)];
+    EXPECT_NEAR(c.panelArea(dx, sim->settings().domain.min, sim->settings().domain.max), dx * depth, 1e-12);
+    const auto col = std::find(header.begin(), header.end(), std::string("pressure_Pa_") + name);
+    ASSERT_NE(col, header.end()) << name;
+    const double p = row[size_t(col - header.begin())], exact = rho * g * (h - z);
+    EXPECT_NEAR(p, exact, 0.02 * exact) << name;
+    const double peak = row[size_t(col - header.begin()) + 1]; // max_pressure_Pa_: at rest, the mean's
+    EXPECT_NEAR(peak, p, 0.01 * p) << name;
+  }
+  // Faces and the terrain have no pressure columns.
+  EXPECT_EQ(std::find(header.begin(), header.end(), "pressure_Pa_x_max"), header.end());
 }
 
 TEST(ColliderLoads, AMovingWallPushesAGranularHeap) {

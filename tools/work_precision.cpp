@@ -128,7 +128,10 @@ std::vector<Case> cases(const std::string& shared) {
                               fmt(", H_M/h %.3f", r.HM) + fmt(" (%.3f)", r.HMRef) + fmt(", x_M/h %.1f", r.xM) +
                               fmt(" (%.1f)", r.xMRef) + fmt(", T_M %.1f", r.TM) + fmt(" (%.1f)", r.TMRef) +
                               fmt(", decay beyond x_M %.3f", r.decayError) + fmt(" (exponent %.3f, H&H -0.267)", r.decayExponent) +
-                              fmt(", V at centroid impact / V_s %.3f", r.centroidSpeedRatio) + fmt(", water lost %.4f", r.lostWater);
+                              fmt(", V at centroid impact / V_s %.3f", r.centroidSpeedRatio) + fmt(", water lost %.4f", r.lostWater) +
+                              "; crest a/h at X = 3, 5, 8, 12:";
+                   for (size_t k = 0; k < r.X.size(); ++k)
+                     if (r.X[k] == 3 || r.X[k] == 5 || r.X[k] == 8 || r.X[k] == 12) p.detail += fmt(" %.3f", r.crest[k]);
                    return p;
                  },
                  {8, 12},

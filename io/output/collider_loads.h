@@ -4,7 +4,9 @@
 //
 // Per row: the mean force and moment over the row's interval (impulse / time, like discharge, so
 // no step is missed), its magnitude, and the largest single-step force magnitude in the interval
-// (impacts are brief). The run's peak single-step force goes to summary.json.
+// (impacts are brief). The run's peak single-step force goes to summary.json. A [[panels]] window
+// of a face also reports its normal load as a pressure over its area (Collider::panelArea): the
+// mean over the interval and the largest of a step.
 #pragma once
 
 #include "io/output/series_columns.h"
@@ -26,11 +28,19 @@ private:
   struct Acc {
     double impulse[6] = {0, 0, 0, 0, 0, 0}; ///< force and moment times time since the last row
     double intervalMax = 0;                  ///< largest |F| of a step since the last row
+    double intervalMaxNormal = 0;            ///< a panel: largest normal force of a step since the last row
     double peak = 0, peakTime = 0;           ///< largest |F| of a step in the run, and when
     double peakForce[3] = {0, 0, 0};
   };
   std::vector<std::string> names_;
   std::vector<Acc> acc_;
+  /// Per collider: a panel's area (m2) and its normal's axis and sign; area 0 for the others.
+  struct Panel {
+    double area = 0;
+    int axis = 0;
+    double sign = 1;
+  };
+  std::vector<Panel> panels_;
 };
 
 } // namespace talus
