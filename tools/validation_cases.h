@@ -149,7 +149,7 @@ struct ImpulseWaveResult : RunCost {
   double centroidSpeedRatio = 0;
   double lostWater = 0;  ///< share of the water's mass that left the domain (splash over the top)
 };
-/// Runs one configuration; r.soundSpeed overrides the water's c (default max(20 sqrt(gh), 8 V_s)).
+/// Runs one configuration; r.soundSpeed overrides the water's c (default max(160 sqrt(gh), 8 V_s)).
 ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r);
 
 /// A one-cell-thick elastic layer (dx = 5 m, one particle per cell, 5 m thick at z = 500 m) over
