@@ -1,5 +1,6 @@
 // `talus run --resume`: a run killed right after a checkpoint and resumed ends with the same
 // particles, series and maps, byte for byte, as an uninterrupted run.
+#include "process_support.h"
 #include "test_support.h"
 
 #include <chrono>
@@ -120,6 +121,37 @@ TEST(Resume, KilledAfterACheckpointAndResumedEqualsAnUninterruptedRun) {
   const std::string lists = fileLists(slurp(dir + "/straight/summary.json"));
   EXPECT_NE(lists.find("frames/particles_00000.h5"), std::string::npos) << lists;
   EXPECT_EQ(fileLists(slurp(dir + "/killed/summary.json")), lists);
+}
+
+TEST(Resume, ARunExtendedToALaterEndTimeEndsAsARunStraightToItAndOtherPhysicsIsRefusedByKey) {
+  // An avalanche that has not stopped at end_time = 0.3 is continued to 0.6 from its last
+  // checkpoint (t = 0.24): the scene's hash leaves out the end time (and the frame outputs), so
+  // the checkpoint is accepted, and the run ends as one run straight to 0.6, byte for byte.
+  const std::string dir = test::tempDir("resume_extend");
+  const std::string scene = dir + "/scene.toml";
+  std::string text = kScene;
+  text.replace(text.find("checkpoint_interval = 0.08\n"), 27, "checkpoint_interval = 0.08\nseries_interval = 0.02\n");
+  std::ofstream(scene) << text;
+  ASSERT_EQ(run(scene + " --out " + dir + "/straight"), 0);
+  ASSERT_EQ(run(scene + " --out " + dir + "/extended --set simulation.end_time=0.3"), 0);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/extended/frames/particles_00004.h5"));
+  ASSERT_EQ(run(scene + " --resume " + dir + "/extended --set simulation.end_time=0.6"), 0);
+  for (const char* file : {"particles.h5", "series.csv", "maps/max_flow_height_vertical.tif", "maps/max_speed.tif",
+                           "frames/particles_00006.h5"}) {
+    const std::string a = slurp(dir + "/straight/" + file), b = slurp(dir + "/extended/" + file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_TRUE(a == b) << file << " differs after the extension";
+  }
+  // Frames at another interval continue after the checkpoint's time (0.56: the next of 0.05 s is
+  // frame 12 at 0.6), not from the old interval's next index.
+  ASSERT_EQ(run(scene + " --resume " + dir + "/extended --set output.frame_interval=0.05"), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/extended/frames/particles_00012.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/extended/frames/particles_00007.h5"));
+  // A key that shapes the state is still refused, and named.
+  const test::Exit e = test::runTalusProcess(
+      {"run", scene, "--resume", dir + "/extended", "--quiet", "--set", "materials.water.sound_speed=50"}, dir + "/log");
+  EXPECT_EQ(e.code, 2) << e.log;
+  EXPECT_NE(e.log.find("materials[0].sound_speed (40 there, 50 here) changed since"), std::string::npos) << e.log;
 }
 
 TEST(Resume, ResumingWithoutACheckpointIsAClearError) {

@@ -291,6 +291,35 @@ std::string ConfigTable::canonicalText() const {
   return out + "}";
 }
 
+namespace {
+void keyLinesOf(const ConfigTable& t, const std::string& prefix, std::string& out) {
+  for (const auto& [k, v] : t.values()) {
+    if (v.isTable()) {
+      keyLinesOf(*std::get<std::shared_ptr<ConfigTable>>(v.data), prefix + k + ".", out);
+      continue;
+    }
+    if (v.isArray()) {
+      const auto& a = std::get<ConfigValue::Array>(v.data);
+      if (!a.empty() && a.front().isTable()) {
+        for (size_t i = 0; i < a.size(); ++i)
+          if (a[i].isTable())
+            keyLinesOf(*std::get<std::shared_ptr<ConfigTable>>(a[i].data), prefix + k + "[" + std::to_string(i) + "].", out);
+        continue;
+      }
+    }
+    out += prefix + k + " = ";
+    canonical(v, out);
+    out += "\n";
+  }
+}
+} // namespace
+
+std::string ConfigTable::keyLines() const {
+  std::string out;
+  keyLinesOf(*this, "", out);
+  return out;
+}
+
 int editDistance(const std::string& a, const std::string& b) {
   std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) prev[j] = int(j);

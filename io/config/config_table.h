@@ -84,6 +84,9 @@ public:
   const std::map<std::string, ConfigValue>& values() const { return values_; }
   /// Every value, keys sorted, numbers exact: equal for equal configurations (names a run).
   std::string canonicalText() const;
+  /// Every value as a line "dotted.key = value" (arrays of tables as key[i].sub), keys sorted,
+  /// numbers exact: what a checkpoint records of its scene to name a key that changed.
+  std::string keyLines() const;
 
   /// Missing required key: blames a present key that looks like a typo of it, if any.
   [[noreturn]] void missing(const std::string& key) const;

@@ -1,5 +1,8 @@
 #include "io/run/checkpoint.h"
 
+#include <map>
+#include <sstream>
+
 #include "io/common/atomic_file.h"
 #include "io/common/h5_file.h"
 #include "io/common/input_error.h"
@@ -9,6 +12,7 @@
 #include <cstdio>
 #include <fcntl.h>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
@@ -179,6 +183,7 @@ void writeCheckpoint(const std::string& path, const Simulation& sim, const Check
     {
       H5Archive a(f, true);
       sim.save(a);
+      if (!id.sceneKeys.empty()) a.put("scene/keys", id.sceneKeys.data(), id.sceneKeys.size());
       if (extra) extra(a);
     }
     h5::writeAttribute(f, "time", sim.time());
@@ -187,12 +192,54 @@ void writeCheckpoint(const std::string& path, const Simulation& sim, const Check
   });
 }
 
+namespace {
+/// The first key whose line differs between two SceneSetup::stateKeys listings, as "key (a
+/// there, b here)"; empty when none can be named.
+std::string changedKey(const std::string& there, const std::string& here) {
+  auto parse = [](const std::string& text) {
+    std::map<std::string, std::string> keys;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      if (const size_t eq = line.find(" = "); eq != std::string::npos) keys[line.substr(0, eq)] = line.substr(eq + 3);
+    return keys;
+  };
+  const auto a = parse(there), b = parse(here);
+  if (a.empty() || b.empty()) return "";
+  auto ia = a.begin();
+  auto ib = b.begin();
+  while (ia != a.end() || ib != b.end()) {
+    if (ib == b.end() || (ia != a.end() && ia->first < ib->first)) return ia->first + " (" + ia->second + " there, absent here)";
+    if (ia == a.end() || ib->first < ia->first) return ib->first + " (absent there, " + ib->second + " here)";
+    if (ia->second != ib->second) return ia->first + " (" + ia->second + " there, " + ib->second + " here)";
+    ++ia, ++ib;
+  }
+  return "";
+}
+
+/// The scene keys a checkpoint recorded (empty when it has none: written before they were kept).
+std::string recordedKeys(const std::string& path) {
+  try {
+    h5::Handle f = h5::openFile(path);
+    H5Archive a(f, false);
+    std::string keys(a.size("scene/keys"), '\0');
+    a.get("scene/keys", keys.data(), keys.size());
+    return keys;
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+} // namespace
+
 void readCheckpoint(const std::string& path, Simulation& sim, const CheckpointIdentity& id,
                     const std::function<void(const StateArchive&)>& extra) {
   const CheckpointHeader h = inspectCheckpoint(path);
-  if (h.sceneHash != id.sceneHash)
+  if (h.sceneHash != id.sceneHash) {
+    const std::string key = changedKey(recordedKeys(path), id.sceneKeys);
     throw InputError(path, "written for another scene (scene hash " + h.sceneHash + ", this scene " + id.sceneHash +
-                               "): the scene file or its --set overrides changed since");
+                               (key.empty() ? std::string("): the scene file or its --set overrides changed since")
+                                            : "): " + key + " changed since") +
+                               "; a resumed run may change only simulation.end_time and the frame outputs");
+  }
   try {
     h5::Handle f = h5::openFile(path);
     H5Archive a(f, false);

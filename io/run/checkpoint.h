@@ -14,9 +14,12 @@ namespace talus {
 std::string checkpointPath(const std::string& dir);
 
 /// What a checkpoint must match to be resumed: the scene it was written for (SceneSetup::hash:
-/// the scene text and --set overrides) and the Talus version (checked by readCheckpoint itself).
+/// its keys after --set overrides, less the end time and the frame outputs) and the Talus
+/// version (checked by readCheckpoint itself). `sceneKeys` (SceneSetup::stateKeys) is stored in
+/// the checkpoint, so a refusal can name the key that changed.
 struct CheckpointIdentity {
   std::string sceneHash;
+  std::string sceneKeys;
 };
 
 /// The checkpoint file format: an HDF5 file behind a 512-byte text header (an HDF5 user block)

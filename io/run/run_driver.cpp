@@ -84,7 +84,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
   };
   const std::string summaryFile = (fs::path(res.outDir) / "summary.json").string();
   const std::string checkpointFile = checkpointPath(res.outDir);
-  const CheckpointIdentity identity{scene.hash};
+  const CheckpointIdentity identity{scene.hash, scene.stateKeys};
 
   auto writeFailed = [&](const WriteError& e) {
     res.status = RunStatus::WriteFailure;
@@ -121,6 +121,9 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
         if (outputs) outputs->load(a);
         frame = a.getValue<int32_t>("driver/next_frame");
         nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
+        // A resumed run may have another frame interval: its frames continue after this time.
+        if (a.getValue<double>("driver/frame_interval") != interval)
+          frame = interval > 0 ? int(std::floor(sim.time() / interval + 1e-9)) + 1 : 0;
       });
       res.checkpointTime = sim.time();
     }
@@ -142,6 +145,7 @@ RunResult runScene(SceneSetup&& scene, const RunOptions& opt) {
         writeCheckpoint(checkpointFile, view, identity, [&](StateArchive& a) {
           outputs->save(a);
           a.putValue("driver/next_frame", int32_t(frame));
+          a.putValue("driver/frame_interval", interval);
           a.putValue("driver/next_checkpoint", nextCheckpoint);
         });
       });

@@ -341,16 +341,35 @@ RunContext SceneSetup::runContext() const {
 }
 
 namespace {
-std::string sceneHash(const std::string& text, const std::vector<std::string>& overrides) {
-  uint64_t h = 1469598103934665603ull;
-  auto byte = [&](unsigned char c) { h = (h ^ c) * 1099511628211ull; };
-  auto add = [&](const std::string& s) {
-    // Length first, so the text and the overrides cannot run into each other.
-    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(uint64_t(s.size()) >> (8 * i)));
-    for (unsigned char c : s) byte(c);
-  };
-  add(text);
-  for (const auto& o : overrides) add(o);
+/// The keys a resumed run may change: when it ends, and which frame files it writes how often.
+/// Every other key (materials, bodies, terrain, laws, dx, particles per cell, and the outputs that
+/// keep state in a checkpoint: series columns, maps) shapes the state a checkpoint holds.
+bool resumeMayChange(const std::string& key) {
+  static const char* const keys[] = {"simulation.end_time",     "output.directory", "output.frame_interval",
+                                     "output.checkpoint_interval", "output.h5",        "output.vdb",
+                                     "output.vdb_points",          "output.ply",       "output.plots",
+                                     "output.series_interval"};
+  for (const char* k : keys)
+    if (key == k) return true;
+  return false;
+}
+
+/// The scene's keys after overrides, less those a resumed run may change.
+std::string stateKeys(const ConfigTable& root) {
+  std::string out;
+  const std::string all = root.keyLines();
+  for (size_t at = 0; at < all.size();) {
+    const size_t end = all.find('\n', at);
+    const std::string line = all.substr(at, end - at + 1);
+    if (!resumeMayChange(line.substr(0, line.find(" = ")))) out += line;
+    at = end + 1;
+  }
+  return out;
+}
+
+std::string sceneHash(const std::string& keys) {
+  uint64_t h = 1469598103934665603ull; // FNV-1a
+  for (unsigned char c : keys) h = (h ^ c) * 1099511628211ull;
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
   return hex;
@@ -369,17 +388,19 @@ SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides, c
 
 SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides,
                          const SeedSlice& slice) {
-  std::string text;
-  auto root = readTomlFile(path, &text);
+  auto root = readTomlFile(path);
   SceneSetup s = build(*root, overrides, slice);
-  s.hash = sceneHash(text, overrides);
+  s.stateKeys = stateKeys(*root);
+  s.hash = sceneHash(s.stateKeys);
   return s;
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides, const SeedSlice& slice) {
-  SceneSetup s = build(*readTomlString(text, name), overrides, slice);
-  s.hash = sceneHash(text, overrides);
+  auto root = readTomlString(text, name);
+  SceneSetup s = build(*root, overrides, slice);
+  s.stateKeys = stateKeys(*root);
+  s.hash = sceneHash(s.stateKeys);
   return s;
 }
 

@@ -30,8 +30,13 @@ struct SceneSetup {
   /// the ground as simulated, i.e. after smoothing, with releases from a post-event DEM carved
   /// out and fixed layers added.
   std::shared_ptr<const DemRaster> dem;
-  /// 16 hex digits identifying the scene as loaded: FNV-1a over its text and the --set
-  /// overrides. A checkpoint is resumed only by the scene it was written for.
+  /// Every key of the scene after --set overrides and AvaFrame expansion, one "key = value" line
+  /// each, less those a resumed run may change (simulation.end_time, output.directory, the frame
+  /// formats and intervals, plots, series_interval): what decides the state a checkpoint holds.
+  std::string stateKeys;
+  /// 16 hex digits identifying that state: FNV-1a over stateKeys. A checkpoint is resumed only by
+  /// a scene with the same hash, so a run can be extended (a later end_time) but not given other
+  /// physics.
   std::string hash;
   /// What the reader did that a user may want to know (terrain built or reused, cells filled).
   std::vector<std::string> notes;
