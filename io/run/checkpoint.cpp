@@ -1,8 +1,5 @@
 #include "io/run/checkpoint.h"
 
-#include <map>
-#include <sstream>
-
 #include "io/common/atomic_file.h"
 #include "io/common/h5_file.h"
 #include "io/common/input_error.h"

@@ -48,6 +48,15 @@ std::vector<std::string> readMaterialList(const ConfigTable& t, const std::strin
   return out;
 }
 
+/// `point = [x, y]` (or also [x, y, z] when `withZ`): finite world coordinates (m).
+std::vector<double> readPoint(const ConfigTable& t, bool withZ, const char* expected) {
+  const auto xyz = t.numbers("point");
+  if (xyz.size() != 2 && !(withZ && xyz.size() == 3)) t.fail("point", expected);
+  for (double v : xyz)
+    if (!std::isfinite(v)) t.fail("point", "must contain finite numbers");
+  return xyz;
+}
+
 /// Section and path names become CSV column and file names: keep them plain.
 std::string readName(const ConfigTable& t, const std::string& fallback, std::vector<std::string>& used) {
   const std::string n = t.string("name", fallback);
@@ -138,11 +147,7 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
     const ConfigTable& t = *probes[i];
     ProbeSpec p;
     p.name = readName(t, "probe" + std::to_string(i), used);
-    const auto xyz = t.numbers("point");
-    if (xyz.size() != 2 && xyz.size() != 3)
-      t.fail("point", "expected [x, y] (start at the material's mean height there) or [x, y, z] (m)");
-    for (double v : xyz)
-      if (!std::isfinite(v)) t.fail("point", "must contain finite numbers");
+    const auto xyz = readPoint(t, true, "expected [x, y] (start at the material's mean height there) or [x, y, z] (m)");
     p.hasZ = xyz.size() == 3;
     p.point = Eigen::Vector3d(xyz[0], xyz[1], p.hasZ ? xyz[2] : 0.0);
     p.radius = t.positive("radius", 0);
@@ -155,10 +160,7 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
     const ConfigTable& t = *gauges[i];
     GaugeSpec g;
     g.name = readName(t, "gauge" + std::to_string(i), used);
-    const auto xy = t.numbers("point");
-    if (xy.size() != 2) t.fail("point", "expected [x, y], the gauge's position in world coordinates (m)");
-    for (double v : xy)
-      if (!std::isfinite(v)) t.fail("point", "must contain finite numbers");
+    const auto xy = readPoint(t, false, "expected [x, y], the gauge's position in world coordinates (m)");
     g.point = Eigen::Vector2d(xy[0], xy[1]);
     g.radius = t.positive("radius", 0);
     s.gauges.push_back(g);

@@ -22,6 +22,15 @@ namespace talus {
 
 namespace {
 
+/// FNV-1a, 64 bit, of `text` as 16 hex digits: names a configuration (peak files, checkpoints).
+std::string fnv1aHex(const std::string& text) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
 void readSimulation(const ConfigTable& root, SceneSetup& s) {
   const ConfigTable* sim = root.table("simulation");
   if (!sim) root.fail("", "missing [simulation] section");
@@ -284,11 +293,7 @@ void readOutput(const ConfigTable& root, SceneSetup& s) {
     }
   for (const auto& b : s.bodies)
     if (b.kind == "layer") pf.simType = "ent";
-  uint64_t h = 1469598103934665603ull; // FNV-1a
-  for (unsigned char c : root.canonicalText()) h = (h ^ c) * 1099511628211ull;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  pf.simHash = std::string(hex).substr(0, 10);
+  pf.simHash = fnv1aHex(root.canonicalText()).substr(0, 10);
 }
 
 } // namespace
@@ -367,14 +372,6 @@ std::string stateKeys(const ConfigTable& root) {
   return out;
 }
 
-std::string sceneHash(const std::string& keys) {
-  uint64_t h = 1469598103934665603ull; // FNV-1a
-  for (unsigned char c : keys) h = (h ^ c) * 1099511628211ull;
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
-}
-
 /// Overrides first, so `--set avaframe.release_thickness=2` reaches the AvaFrame folder's bodies.
 SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides, const SeedSlice& slice) {
   for (const auto& o : overrides) applyOverride(root, o);
@@ -382,26 +379,20 @@ SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides, c
   expandAvaFrame(root, notes);
   SceneSetup s = buildScene(root, slice);
   s.notes.insert(s.notes.begin(), notes.begin(), notes.end());
+  s.stateKeys = stateKeys(root);
+  s.hash = fnv1aHex(s.stateKeys);
   return s;
 }
 } // namespace
 
 SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>& overrides,
                          const SeedSlice& slice) {
-  auto root = readTomlFile(path);
-  SceneSetup s = build(*root, overrides, slice);
-  s.stateKeys = stateKeys(*root);
-  s.hash = sceneHash(s.stateKeys);
-  return s;
+  return build(*readTomlFile(path), overrides, slice);
 }
 
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides, const SeedSlice& slice) {
-  auto root = readTomlString(text, name);
-  SceneSetup s = build(*root, overrides, slice);
-  s.stateKeys = stateKeys(*root);
-  s.hash = sceneHash(s.stateKeys);
-  return s;
+  return build(*readTomlString(text, name), overrides, slice);
 }
 
 } // namespace talus
