@@ -203,12 +203,17 @@ double Simulation::step(double dtCap) {
   return dt;
 }
 
+double Simulation::stepToward(double t) {
+  const double remaining = t - time_;
+  const double dt = stableDt();
+  const double taken = step(remaining <= dt ? remaining : (remaining < 2 * dt ? 0.5 * remaining : dt));
+  if (remaining <= dt) time_ = t; // exact arrival despite rounding
+  return taken;
+}
+
 void Simulation::advanceTo(double t, const std::function<void()>& onStep) {
   while (time_ < t) {
-    const double remaining = t - time_;
-    const double dt = stableDt();
-    step(remaining <= dt ? remaining : (remaining < 2 * dt ? 0.5 * remaining : dt));
-    if (remaining <= dt) time_ = t; // exact arrival despite rounding
+    stepToward(t);
     if (onStep) onStep();
   }
 }

@@ -132,6 +132,9 @@ public:
   double stableDt() const;
   /// Advances by min(stableDt(), dtCap); returns the step taken.
   double step(double dtCap = std::numeric_limits<double>::infinity());
+  /// One step of advanceTo(t)'s sequence (call only while time() < t): the stable step, or the
+  /// remainder when it is within one, or half of it when within two. Returns the step taken.
+  double stepToward(double t);
   /// Steps until time() reaches t exactly (the last two steps share the remainder evenly, so
   /// there is no sliver step); calls onStep after each step.
   void advanceTo(double t, const std::function<void()>& onStep = {});

@@ -1,0 +1,286 @@
+#include "io/run/run.h"
+
+#include "io/common/write_error.h"
+#include "io/output/output_set.h"
+#include "io/output/particle_writer.h"
+#include "io/run/checkpoint.h"
+#include "io/run/progress_bar.h"
+#include "io/run/run_ranks.h"
+#include "io/run/run_signals.h"
+#include "io/run/run_summary.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+namespace talus {
+
+namespace fs = std::filesystem;
+
+namespace {
+/// Creating a folder fails like writing a file (full, read-only, removed): report it as one.
+void makeDirectories(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw WriteError(dir, ec.message());
+}
+} // namespace
+
+/// Everything of the run besides the simulation: the scene's settings, the outputs, the view
+/// rank 0 writes from, the clocks of frames and checkpoints.
+struct Run::State {
+  State(const SceneSetup& scene, const RunOptions& o)
+      : opt(o), ranks(o.ranks), output(scene.output), materialNames(scene.materialNames),
+        identity{scene.hash, scene.stateKeys}, interval(scene.output.frameInterval),
+        checkpointEvery(scene.output.checkpointInterval < 0 ? scene.endTime / 10
+                                                            : scene.output.checkpointInterval) {}
+
+  RunOptions opt;
+  RunRanks ranks;
+  OutputSettings output;
+  std::vector<std::string> materialNames;
+  CheckpointIdentity identity;
+  std::unique_ptr<tbb::global_control> threadLimit;
+  std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
+  Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
+  RunInfo info;
+  std::optional<OutputSet> outputs;
+  std::optional<RunSignals> signals;
+  std::unique_ptr<ProgressBar> bar;
+  RootLoadBalance balance;
+  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+  std::string summaryFile, checkpointFile;
+  int frame = 0;
+  double interval, checkpointEvery;
+  double nextCheckpoint = std::numeric_limits<double>::infinity();
+};
+
+Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>(scene, opt)) {
+  State& s = *s_;
+  res_.outDir = opt.outDir.empty() ? scene.output.directory : opt.outDir;
+  endTime_ = scene.endTime;
+  const int threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
+  s.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  sim_ = std::make_unique<Simulation>(scene.settings, std::move(scene.groups));
+  // With ranks, rank 0 writes every output from a view of the whole run (Simulation::gatherInto).
+  if (s.ranks.active() && s.ranks.root()) {
+    SceneSetup again = opt.viewScene();
+    s.viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
+  }
+  s.view = s.viewed ? s.viewed.get() : sim_.get();
+  s.info.scene = scene.file;
+  s.info.threads = threads;
+  s.info.materialNames = scene.materialNames;
+  s.info.notes = scene.notes;
+  s.summaryFile = (fs::path(res_.outDir) / "summary.json").string();
+  s.checkpointFile = checkpointPath(res_.outDir);
+  if (s.checkpointEvery > 0) s.nextCheckpoint = s.checkpointEvery;
+  if (opt.handleSignals) s.signals.emplace(opt.progress);
+  // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
+  // resumed run then replaces their accumulated state with the checkpoint's. A refused
+  // checkpoint throws InputError before anything is written.
+  guarded([&] {
+    s.ranks.onRoot([&] {
+      makeDirectories(res_.outDir);
+      s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
+      s.outputs->start(*s.view);
+    });
+    if (opt.resume) {
+      // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
+      // a run checkpointed at N ranks resumes at any M.
+      readCheckpoint(s.checkpointFile, *sim_, s.identity, [&](const StateArchive& a) {
+        if (s.outputs) s.outputs->load(a);
+        s.frame = a.getValue<int32_t>("driver/next_frame");
+        s.nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
+        // A resumed run may have another frame interval: its frames continue after this time.
+        if (a.getValue<double>("driver/frame_interval") != s.interval)
+          s.frame = s.interval > 0 ? int(std::floor(sim_->time() / s.interval + 1e-9)) + 1 : 0;
+      });
+      res_.checkpointTime = sim_->time();
+    }
+    // The first frame before distributing: binning reorders the particles, and one process
+    // writes this frame in seeding order.
+    if (!opt.resume && s.interval > 0) {
+      s.ranks.onRoot([&] { s.outputs->frame(*s.view, s.frame); });
+      ++s.frame;
+    }
+    if (s.ranks.active()) {
+      // Each rank seeded its part (unless resumed: then every rank read every particle).
+      const bool seededInParts = scene.seedSlice.active() && !opt.resume;
+      sim_->distribute(opt.ranks, 0.1, seededInParts ? &scene.seedSlice.index : nullptr);
+      sim_->gatherInto(s.viewed.get());
+    }
+    s.bar = std::make_unique<ProgressBar>(endTime_, stderr, opt.progress && s.ranks.root());
+  });
+}
+
+Run::~Run() = default;
+
+bool Run::step() {
+  if (ended_) return false;
+  State& s = *s_;
+  guarded([&] {
+    try {
+      if (sim_->time() < endTime_) {
+        // Frames fall on multiples of the interval: the steps toward one end exactly on it.
+        const double frameTime = s.frame * s.interval;
+        const double target = s.interval > 0 ? std::min(endTime_, frameTime) : endTime_;
+        // A run resumed at a frame's time writes that frame before it steps again.
+        if (sim_->time() < target) {
+          sim_->stepToward(target);
+          afterStep();
+          if (ended_) return; // stopped by a signal
+        }
+        // 3 * 0.1 > 0.3 in floating point: the frame is due when the target is within rounding
+        // of its time.
+        if (sim_->time() >= target && s.interval > 0 && target >= frameTime - 1e-9 * s.interval) {
+          if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+          s.ranks.onRoot([&] { s.outputs->frame(*s.view, s.frame); });
+          ++s.frame;
+        }
+      }
+    } catch (const NumericalError& e) {
+      res_.status = RunStatus::NumericalFailure;
+      res_.error = e.what();
+      s.info.status = std::string("failed: ") + e.what();
+    }
+    if (res_.status == RunStatus::NumericalFailure || sim_->time() >= endTime_) finish();
+  });
+  return !ended_;
+}
+
+bool Run::advanceTo(double t, const std::function<void()>& after) {
+  while (!ended_ && sim_->time() < std::min(t, endTime_)) {
+    step();
+    if (after) after();
+  }
+  // At the end time the run finishes even when no step was left to take.
+  if (!ended_ && sim_->time() >= endTime_) step();
+  return !ended_;
+}
+
+void Run::afterStep() {
+  State& s = *s_;
+  if (s.output.readsEveryStep()) {
+    // Positions, velocities and masses are all the per-step outputs read.
+    if (s.ranks.active()) sim_->gatherInto(s.viewed.get(), Simulation::GatherScope::Kinematics);
+    s.ranks.onRoot([&] {
+      // Not the gather: its time includes waiting for slower ranks.
+      const auto o0 = std::chrono::steady_clock::now();
+      s.outputs->step(*s.view);
+      s.balance.addOutputSeconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count());
+    });
+  }
+  if (s.ranks.active()) s.balance.afterStep(s.ranks, *sim_);
+  s.bar->update(sim_->time(), sim_->steps(), sim_->particleSteps());
+  if (s.ranks.active() && s.ranks.root() && s.opt.handleSignals) {
+    char line[200];
+    std::snprintf(line, sizeof line, "talus: the job was at step %llu (t = %.6g s); its last checkpoint (t = %.6g s) is whole; mpirun names a rank that failed",
+                  (unsigned long long)sim_->steps(), sim_->time(), res_.checkpointTime);
+    setStopContext(line);
+  }
+  // Signals are read once per step, after the step, when the state is whole (under MPI, the
+  // ranks' flags are reduced here). SIGUSR1: the job may be killed soon.
+  const bool asked = s.ranks.agree(takeCheckpointRequest());
+  if (sim_->time() >= s.nextCheckpoint && sim_->time() < endTime_) {
+    s.nextCheckpoint += s.checkpointEvery;
+    checkpoint(); // the last good state: a failure later never overwrites it
+  } else if (asked) {
+    checkpoint();
+  }
+  // At the end time the run is complete: its final outputs are quicker than a resume.
+  if (const int sig = s.ranks.agree(stopSignalReceived()); sig && sim_->time() < endTime_) interrupt(sig);
+}
+
+void Run::checkpoint() {
+  State& s = *s_;
+  guarded([&] {
+    if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    s.ranks.onRoot([&] {
+      writeCheckpoint(s.checkpointFile, *s.view, s.identity, [&](StateArchive& a) {
+        s.outputs->save(a);
+        a.putValue("driver/next_frame", int32_t(s.frame));
+        a.putValue("driver/frame_interval", s.interval);
+        a.putValue("driver/next_checkpoint", s.nextCheckpoint);
+      });
+    });
+    res_.checkpointTime = sim_->time();
+  });
+}
+
+void Run::interrupt(int signal) {
+  if (ended_) return;
+  res_.status = RunStatus::Interrupted;
+  res_.signal = signal;
+  s_->info.status = "interrupted";
+  if (signal) s_->info.signal = signalName(signal);
+  checkpoint();
+  if (!ended_) guarded([&] { finish(); });
+}
+
+void Run::finish() {
+  State& s = *s_;
+  s.bar->finish();
+  const bool interrupted = res_.status == RunStatus::Interrupted;
+  if (!interrupted) {
+    if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    s.ranks.onRoot([&] {
+      s.outputs->finish(*s.view, res_.status == RunStatus::Completed);
+      if (res_.status == RunStatus::Completed)
+        writeParticlesH5((fs::path(res_.outDir) / "particles.h5").string(), *s.view, s.materialNames);
+    });
+  }
+  if (s.ranks.active()) s.info.ranks = rankFigures(*sim_);
+  record();
+  s.ranks.onRoot([&] { writeSummaryJson(s.summaryFile, *s.view, s.info); });
+  ended_ = true;
+}
+
+void Run::record() {
+  State& s = *s_;
+  res_.steps = sim_->steps(), res_.time = sim_->time();
+  res_.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s.t0).count();
+  s.info.wallSeconds = res_.wallSeconds;
+  if (s.outputs) s.info.outputs = s.outputs->reports();
+  res_.files.clear();
+  for (const auto& o : s.info.outputs) res_.files.insert(res_.files.end(), o.files.begin(), o.files.end());
+  res_.files.push_back("summary.json");
+}
+
+void Run::writeFailed(const std::string& what) {
+  res_.status = RunStatus::WriteFailure;
+  res_.error = what;
+  s_->info.status = "failed: " + what;
+  record();
+  try {
+    writeSummaryJson(s_->summaryFile, *s_->view, s_->info);
+  } catch (const WriteError&) {
+    // The disk refuses it as well; the error above is the one to report.
+  }
+  ended_ = true;
+}
+
+/// Runs f; a write failure or a failed peer ends the run. Once ended, the ranks agree on how
+/// (rank 0 knows a write failure the others saw as PeerFailed).
+template <class F> void Run::guarded(F&& f) {
+  try {
+    f();
+  } catch (const WriteError& e) {
+    writeFailed(e.what());
+  } catch (const fs::filesystem_error& e) { // a folder an output creates
+    writeFailed(WriteError(e.path1().string(), e.code().message()).what());
+  } catch (const PeerFailed&) {
+    record(); // rank 0 failed and reports it; its status is agreed below
+    ended_ = true;
+  }
+  if (ended_ && s_->ranks.active())
+    res_.status = RunStatus(s_->ranks.agree(s_->ranks.root() ? int(res_.status) : 0));
+  res_.ok = res_.status == RunStatus::Completed;
+}
+
+} // namespace talus

@@ -1,0 +1,64 @@
+// A run in progress: the simulation with its outputs, frames, checkpoints and signals, advanced
+// step by step by whoever drives it (`runScene` to the end time; the Python module from a script).
+#pragma once
+
+#include "io/run/run_driver.h"
+
+#include <functional>
+#include <memory>
+
+namespace talus {
+
+class Simulation;
+
+class Run {
+public:
+  /// Builds the simulation from the scene (its material groups move in), creates the output
+  /// folder and the outputs [output] asks for, and with options.resume continues from the
+  /// folder's checkpoint. Throws InputError when that checkpoint is missing or refused (before
+  /// anything is written). A folder or file that cannot be written does not throw: the run
+  /// ends at once with RunStatus::WriteFailure (see ended(), result()).
+  Run(SceneSetup&& scene, const RunOptions& options);
+  ~Run();
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  /// One step toward the next frame or the end time, then what follows every step: the
+  /// per-step outputs, a checkpoint when one is due or asked for (SIGUSR1), a frame when its
+  /// time is reached, a stop signal. Returns false once the run has ended: at the end time
+  /// (the final outputs are then written), on a numerical failure, a write failure, or a stop
+  /// (signal or interrupt()). Calling it after the end does nothing; a run resumed at a frame's
+  /// time writes that frame on its first call without stepping. Never throws the run's own
+  /// failures: they are in result().
+  bool step();
+  /// Steps until the simulated time reaches t (or the end time, or the run ends); afterStep, if
+  /// given, is called after every step. Returns false once the run has ended.
+  bool advanceTo(double t, const std::function<void()>& afterStep = {});
+  /// Ends the run as interrupted by `signal` (0: by its caller): writes a checkpoint and
+  /// summary.json; a later Run with options.resume continues bit for bit.
+  void interrupt(int signal = 0);
+  /// Writes a checkpoint of the current state now (the run goes on).
+  void checkpoint();
+
+  bool ended() const { return ended_; }
+  const Simulation& simulation() const { return *sim_; }
+  double endTime() const { return endTime_; }
+  /// The result so far; complete once ended().
+  const RunResult& result() const { return res_; }
+
+private:
+  struct State;
+  void afterStep();
+  void finish();
+  template <class F> void guarded(F&& f);
+  void writeFailed(const std::string& what);
+  void record();
+
+  std::unique_ptr<State> s_;
+  std::unique_ptr<Simulation> sim_;
+  RunResult res_;
+  double endTime_ = 0;
+  bool ended_ = false;
+};
+
+} // namespace talus
