@@ -14,6 +14,7 @@ declare -A allowed=(
   [io/scene]="io/scene io/config io/common io/terrain io/output engine materials"
   [io/run]="io/run io/scene io/output io/common io/config engine"
   [hazard]="hazard io/scene io/output io/terrain io/common io/config engine"
+  [python]="python io/run io/scene io/output io/terrain io/common io/config engine hazard tools"
 )
 bad=0
 for lib in "${!allowed[@]}"; do

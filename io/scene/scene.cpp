@@ -395,4 +395,8 @@ SceneSetup loadSceneString(const std::string& text, const std::string& name,
   return build(*readTomlString(text, name), overrides, slice);
 }
 
+SceneSetup loadSceneTable(ConfigTable& root, const std::vector<std::string>& overrides, const SeedSlice& slice) {
+  return build(root, overrides, slice);
+}
+
 } // namespace talus

@@ -61,6 +61,11 @@ SceneSetup loadSceneFile(const std::string& path, const std::vector<std::string>
 SceneSetup loadSceneString(const std::string& text, const std::string& name,
                            const std::vector<std::string>& overrides = {}, const SeedSlice& slice = {});
 
+/// A scene already parsed (the Python module builds `root` from a dict): overrides applied to it,
+/// then built. Throws InputError naming root's file and the key.
+SceneSetup loadSceneTable(ConfigTable& root, const std::vector<std::string>& overrides = {},
+                          const SeedSlice& slice = {});
+
 /// The scene `talus run` uses when no file is given (data/scenes/default.toml, compiled in).
 const std::string& defaultSceneText();
 
