@@ -1,0 +1,174 @@
+#include "io/output/water_surface_map.h"
+
+#include "io/common/geotiff_writer.h"
+#include "io/output/map_quicklook.h"
+#include "io/output/water_gauges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <limits>
+
+namespace talus {
+
+namespace {
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kNoData = -9999.f;
+} // namespace
+
+WaterSurfaceMap::WaterSurfaceMap(std::string outDir, RasterGrid grid, std::shared_ptr<const DemRaster> dem,
+                                 std::vector<std::string> waterMaterials, double particleSpacing, bool quicklook)
+    : outDir_(std::move(outDir)), grid_(std::move(grid)), dem_(std::move(dem)),
+      waterMaterials_(std::move(waterMaterials)), spacing_(particleSpacing), quicklook_(quicklook) {}
+
+void WaterSurfaceMap::onStart(const Simulation& sim) {
+  water_ = waterGroups(sim, waterMaterials_);
+  if (water_.empty()) return;
+  // The window: the cells of the grid the domain's xy extent touches (as the hazard maps').
+  const auto& st = sim.settings();
+  const double cs = grid_.cellSize;
+  const Vec3d lo = st.domain.min + st.origin, hi = st.domain.max + st.origin;
+  c0_ = std::clamp(int(std::floor((lo.x() - grid_.originX) / cs)), 0, grid_.nx);
+  r0_ = std::clamp(int(std::floor((grid_.originY - hi.y()) / cs)), 0, grid_.ny);
+  const int c1 = std::clamp(int(std::ceil((hi.x() - grid_.originX) / cs)), 0, grid_.nx);
+  const int r1 = std::clamp(int(std::ceil((grid_.originY - lo.y()) / cs)), 0, grid_.ny);
+  window_ = grid_;
+  window_.nx = std::max(0, c1 - c0_), window_.ny = std::max(0, r1 - r0_);
+  window_.originX = grid_.originX + c0_ * cs;
+  window_.originY = grid_.originY - r0_ * cs;
+  originZ_ = st.origin.z();
+  volume_.assign(window_.size(), 0.f);
+  bottom_.assign(window_.size(), std::numeric_limits<float>::infinity());
+  surfaces(sim, initial_);
+  max_ = initial_;
+}
+
+void WaterSurfaceMap::surfaces(const Simulation& sim, std::vector<float>& out) {
+  const Vec3d& o = sim.settings().origin;
+  const double inv = 1 / window_.cellSize;
+  touched_.clear();
+  // One pass over the water in particle order: the sums are the same at any thread count.
+  for (const MaterialGroup* g : water_) {
+    const ParticleSet& P = g->particles;
+    const double rho = g->density();
+    for (size_t p = 0; p < P.size(); ++p) {
+      const double c = (double(P.x[p].x()) + o.x() - window_.originX) * inv;
+      const double r = (window_.originY - double(P.x[p].y()) - o.y()) * inv;
+      if (!(c >= 0 && r >= 0 && c < window_.nx && r < window_.ny)) continue;
+      const uint32_t cell = uint32_t(window_.index(int(c), int(r)));
+      if (volume_[cell] == 0.f) touched_.push_back(cell);
+      volume_[cell] += float(double(P.mass[p]) / rho);
+      bottom_[cell] = std::min(bottom_[cell], float(double(P.x[p].z()) - 0.5 * spacing_));
+    }
+  }
+  out.assign(window_.size(), kNaN);
+  const double area = window_.cellSize * window_.cellSize;
+  for (uint32_t cell : touched_) {
+    out[cell] = float(originZ_ + bottom_[cell] + volume_[cell] / area);
+    volume_[cell] = 0.f;
+    bottom_[cell] = std::numeric_limits<float>::infinity();
+  }
+}
+
+void WaterSurfaceMap::onStep(const Simulation& sim, double) {
+  if (water_.empty()) return;
+  std::vector<float> now;
+  surfaces(sim, now);
+  for (uint32_t cell : touched_)
+    if (!(max_[cell] >= now[cell])) max_[cell] = now[cell]; // NaN (never wet) is replaced
+}
+
+std::vector<float> WaterSurfaceMap::onGrid(const std::vector<float>& window) const {
+  std::vector<float> full(grid_.size(), kNaN);
+  for (int r = 0; r < window_.ny; ++r)
+    for (int c = 0; c < window_.nx; ++c) full[grid_.index(c0_ + c, r0_ + r)] = window[window_.index(c, r)];
+  return full;
+}
+
+std::vector<float> WaterSurfaceMap::maxSurface() const { return onGrid(max_); }
+
+std::vector<float> WaterSurfaceMap::rise() const {
+  // The initial level of every cell: its own where wet at the start, else the nearest wet
+  // cell's, reached in 4-neighbour steps from all wet cells at once (in cell order: ties go to
+  // the first, the same every run).
+  std::vector<float> level = initial_;
+  std::deque<uint32_t> queue;
+  for (uint32_t c = 0; c < level.size(); ++c)
+    if (!std::isnan(level[c])) queue.push_back(c);
+  while (!queue.empty()) {
+    const uint32_t c = queue.front();
+    queue.pop_front();
+    const int x = int(c % uint32_t(window_.nx)), y = int(c / uint32_t(window_.nx));
+    const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+    for (int k = 0; k < 4; ++k) {
+      if (nx[k] < 0 || ny[k] < 0 || nx[k] >= window_.nx || ny[k] >= window_.ny) continue;
+      const uint32_t n = uint32_t(window_.index(nx[k], ny[k]));
+      if (std::isnan(level[n])) level[n] = level[c], queue.push_back(n);
+    }
+  }
+  std::vector<float> out(max_.size(), kNaN);
+  for (size_t c = 0; c < out.size(); ++c)
+    if (!std::isnan(max_[c])) out[c] = max_[c] - level[c];
+  return onGrid(out);
+}
+
+void WaterSurfaceMap::onFinish(const Simulation&, bool) {
+  if (water_.empty()) return;
+  namespace fs = std::filesystem;
+  fs::create_directories(fs::path(outDir_) / "maps");
+  auto write = [&](const char* stem, const char* description, std::vector<float> values) {
+    for (float& v : values)
+      if (std::isnan(v)) v = kNoData;
+    GeoTiffBand b;
+    b.description = description;
+    b.unit = "m";
+    b.nodata = kNoData;
+    b.metadata = {{"TALUS_QUANTITY", description}};
+    writeGeoTiff((fs::path(outDir_) / "maps" / (std::string(stem) + ".tif")).string(), grid_, values, b);
+    recordFile(std::string("maps/") + stem + ".tif");
+    return values;
+  };
+  write("max_water_surface", "highest water surface elevation", maxSurface());
+  const std::vector<float> r = write("water_surface_rise", "water surface rise above its initial level", rise());
+  if (!quicklook_) return;
+  std::vector<float> heights;
+  if (dem_) heights = dem_->height;
+  QuicklookStyle style;
+  style.title = "Water surface rise (run-up and flooding)";
+  style.subtitle = "highest surface above the initial level";
+  style.unit = "m";
+  style.ramp = chart::Ramp::Blues;
+  writeMapQuicklook((fs::path(outDir_) / "maps" / "water_surface_rise.png").string(), grid_, r, heights, style, kNoData);
+  recordFile("maps/water_surface_rise.png");
+}
+
+std::vector<std::pair<std::string, std::string>> WaterSurfaceMap::summary() const {
+  if (water_.empty()) return {};
+  // The largest rise anywhere, the run-up (largest rise where the ground was dry at the start)
+  // and the area flooded that was dry.
+  const std::vector<float> r = rise();
+  const std::vector<float> init = onGrid(initial_);
+  double maxRise = 0, runup = 0, flooded = 0;
+  for (size_t c = 0; c < r.size(); ++c) {
+    if (std::isnan(r[c])) continue;
+    maxRise = std::max(maxRise, double(r[c]));
+    if (std::isnan(init[c])) runup = std::max(runup, double(r[c])), flooded += grid_.cellSize * grid_.cellSize;
+  }
+  char buf[64];
+  auto num = [&](double v) { return std::snprintf(buf, sizeof buf, "%.6g", v), std::string(buf); };
+  return {{"water_surface_rise_max_m", num(maxRise)}, {"water_runup_max_m", num(runup)}, {"water_flooded_area_m2", num(flooded)}};
+}
+
+void WaterSurfaceMap::save(StateArchive& a, const std::string& prefix) const {
+  a.putVector(prefix + "initial", initial_);
+  a.putVector(prefix + "max", max_);
+}
+
+void WaterSurfaceMap::load(const StateArchive& a, const std::string& prefix) {
+  a.getVector(prefix + "initial", initial_);
+  a.getVector(prefix + "max", max_);
+}
+
+} // namespace talus
