@@ -109,6 +109,17 @@ inline Exit runTalusProcess(const std::vector<std::string>& args, const std::str
   return p.wait();
 }
 
+/// Runs a shell command; returns its exit status, its output (stdout and stderr) in `out`.
+inline int shell(const std::string& cmd, std::string& out) {
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  char buf[4096];
+  out.clear();
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream s;

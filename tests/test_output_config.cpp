@@ -150,6 +150,10 @@ TEST(OutputConfig, BadValuesNameFileLineAndKey) {
               "need series = true");
   expectError("[output]\nseries = false\n[[output.sections]]\npoints = [[0, 0], [1, 0]]\n", kFirst + 1,
               "output.series", "need series = true");
+  expectError("[output]\nanimation = true\n", kFirst + 1, "output.animation", "it needs maps = true");
+  expectError("[output]\nmaps = true\nanimation = { quantity = \"volume\" }\n", kFirst + 2,
+              "output.animation.quantity", "thickness");
+  expectError("[output]\nmaps = true\nanimation = { fps = 0 }\n", kFirst + 2, "output.animation.fps", "1");
 }
 
 TEST(OutputSet, OnlyRequestedOutputsAreConstructed) {
@@ -166,4 +170,8 @@ TEST(OutputSet, OnlyRequestedOutputsAreConstructed) {
   EXPECT_EQ(names({"output.frame_interval=0.05", "output.h5=false", "output.vdb=false", "output.ply=true",
                    "output.vdb_points=true", "output.series=false", "output.maps=true"}),
             (V{"vdb_points", "ply_frames", "hazard_maps"}));
+  // The run-up map comes with the maps where there is water (a material of model water).
+  const std::string lake = "[[materials]]\nname = \"lake\"\nmodel = \"water\"\ndensity = 1000\nsound_speed = 20\n";
+  const SceneSetup wet = loadSceneString(std::string(kScene) + lake, "test.toml", {"output.maps=true", "output.series=false"});
+  EXPECT_EQ(OutputSet(wet.output, wet.runContext(), dir).names(), (V{"hazard_maps", "water_surface_map"}));
 }

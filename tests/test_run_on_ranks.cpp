@@ -1,6 +1,7 @@
 // `mpirun -np N talus run`: the files are one process's, a run checkpointed at N ranks resumes
 // at M, and a killed rank ends the job with the last checkpoint intact. Skipped without mpirun.
 #include "small_collapse.h"
+#include "process_support.h"
 #include "test_support.h"
 
 #include <filesystem>
@@ -13,17 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Runs a shell command; returns its exit status, its output in `out`.
-int shell(const std::string& cmd, std::string& out) {
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (!pipe) return -1;
-  char buf[4096];
-  out.clear();
-  while (fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 /// `mpirun --oversubscribe -np n` with Open MPI's allow-run-as-root variables (CI runs as root).
 std::string mpirun(int n) {
   return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -np " + std::to_string(n) + " ";
@@ -31,7 +21,7 @@ std::string mpirun(int n) {
 
 bool haveMpirun() {
   std::string out;
-  return shell("command -v mpirun", out) == 0;
+  return test::shell("command -v mpirun", out) == 0;
 }
 
 std::string bytes(const fs::path& p) {
@@ -78,7 +68,7 @@ TEST(RunOnRanks, TheDefaultScenesFilesAtTwoRanksAreOneProcesss) {
   const std::string dir = test::tempDir("ranks_default");
   std::string out;
   ASSERT_EQ(test::runTalus("run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/one", out), 0) << out;
-  ASSERT_EQ(shell(mpirun(2) + TALUS_BINARY " run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/two", out), 0) << out;
+  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/two", out), 0) << out;
   expectSameFiles(dir + "/one", dir + "/two");
   const std::string summary = bytes(dir + "/two/summary.json");
   EXPECT_NE(summary.find("\"ranks\": 2"), std::string::npos);
@@ -91,10 +81,10 @@ TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
   const std::string scene = sceneFile(dir);
   std::string out;
   ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
-  ASSERT_EQ(shell(mpirun(4) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/four", out), 0) << out;
+  ASSERT_EQ(test::shell(mpirun(4) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/four", out), 0) << out;
   expectSameFiles(dir + "/one", dir + "/four");
   // The four ranks' last checkpoint (t = 0.11 s), resumed at two ranks, ends where one process did.
-  ASSERT_EQ(shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --resume " + dir + "/four", out), 0) << out;
+  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --resume " + dir + "/four", out), 0) << out;
   expectSameFiles(dir + "/one", dir + "/four");
 }
 
@@ -108,7 +98,7 @@ TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {
                           "/checkpoint.h5 ]; do sleep 0.05; done; sleep 0.3; kill -9 $$) & fi; exec " TALUS_BINARY
                           " run " + scene + " --set simulation.end_time=0.3 --threads 1 --out " + run + "'";
   std::string out;
-  EXPECT_NE(shell(cmd, out), 0);
+  EXPECT_NE(test::shell(cmd, out), 0);
   EXPECT_NE(out.find("rank 1"), std::string::npos) << out;
   EXPECT_NE(out.find("signal 9"), std::string::npos) << out;
   EXPECT_NE(out.find("the job was at step"), std::string::npos) << out; // rank 0's line, on mpirun's SIGTERM

@@ -84,6 +84,7 @@ int runEnsembleCommand(const EnsembleOptions& o) {
   std::vector<std::string> base = o.sets;
   if (!o.avaframe.empty()) base.push_back(avaFrameOverride(o.avaframe));
   base.push_back("output.peak_files=true"); // members are summarised from their peak files
+  base.push_back("output.animation=false"); // and nobody watches a member's film
   const SceneSetup scene = validate(o, plan, base);
   if (!scene.output.maps.enabled)
     throw InputError(o.scene, "an ensemble is summarised from the members' hazard maps: give [output] maps = true");

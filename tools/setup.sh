@@ -19,6 +19,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-h5py python3-matplotlib
+  ffmpeg
 )
 
 missing=()

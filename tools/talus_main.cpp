@@ -9,6 +9,7 @@
 #include "io/scene/scene.h"
 #include "io/config/toml_reader.h"
 #include "tools/analysis_commands.h"
+#include "tools/animate_command.h"
 #include "tools/benchmark.h"
 #include "tools/ensemble_command.h"
 #include "tools/work_precision.h"
@@ -172,6 +173,8 @@ int main(int argc, char** argv) {
   auto* ensembleCmd = addEnsembleCommand(app, ensembleOpt);
   AnalysisOptions analysisOpt;
   const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
+  AnimateOptions animateOpt;
+  auto* animateCmd = addAnimateCommand(app, animateOpt);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -188,6 +191,7 @@ int main(int argc, char** argv) {
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);
+    if (*animateCmd) return runAnimateCommand(animateOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
     if (*defaults) {
       std::cout << defaultSceneText();

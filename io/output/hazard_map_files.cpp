@@ -2,6 +2,9 @@
 // and a PNG quick-look.
 #include "io/output/hazard_maps_impl.h"
 
+#include "io/common/input_error.h"
+#include "io/output/animation.h"
+
 #include "io/common/geotiff_writer.h"
 #include "io/common/names.h"
 #include "io/output/map_quicklook.h"
@@ -108,6 +111,29 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
                                         kNoData))
       recordFile(f);
   }
+  if (settings_.animation.enabled) makeFilm();
+}
+
+void HazardMaps::makeFilm() {
+  // The film is a view of the run: without ffmpeg the run still completes, and says so.
+  AnimationStyle style;
+  style.quantity = settings_.animation.quantity;
+  style.fps = settings_.animation.fps;
+  style.scaleMax = settings_.animation.scaleMax;
+  try {
+    const AnimationResult r = makeAnimation(outDir_, style);
+    for (const auto& f : r.files) recordFile(f);
+    animationOutcome_ = r.problem.empty() ? r.files.front() : r.problem;
+  } catch (const InputError& e) {
+    animationOutcome_ = e.what();
+  }
+}
+
+std::vector<std::pair<std::string, std::string>> HazardMaps::summary() const {
+  if (animationOutcome_.empty()) return {};
+  std::string quoted = "\"";
+  for (char c : animationOutcome_) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  return {{"animation", quoted + "\""}};
 }
 
 std::vector<float> HazardMaps::raster(Quantity q, int layer) const {

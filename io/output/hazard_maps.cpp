@@ -2,6 +2,8 @@
 // in bands of rows (bit-identical at any thread count) and folded into the maxima.
 #include "io/output/hazard_maps_impl.h"
 
+#include "io/output/animation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -39,6 +41,7 @@ void HazardMaps::save(StateArchive& a, const std::string& prefix) const {
   a.putVector(prefix + "cos_slope", m.cosSlope);
   a.putValue(prefix + "last_time", m.lastTime);
   a.putValue(prefix + "accumulations", uint64_t(accumulations_));
+  a.putValue(prefix + "animation_next", int32_t(m.animationNext));
 }
 
 void HazardMaps::load(const StateArchive& a, const std::string& prefix) {
@@ -48,6 +51,7 @@ void HazardMaps::load(const StateArchive& a, const std::string& prefix) {
   a.getVector(prefix + "cos_slope", m.cosSlope);
   m.lastTime = a.getValue<double>(prefix + "last_time");
   accumulations_ = size_t(a.getValue<uint64_t>(prefix + "accumulations"));
+  m.animationNext = a.getValue<int32_t>(prefix + "animation_next");
 }
 
 void HazardMaps::onStart(const Simulation& sim) {
@@ -119,8 +123,13 @@ void HazardMaps::onStart(const Simulation& sim) {
 }
 
 void HazardMaps::onStep(const Simulation& sim, double) {
-  if (sim.time() - impl_->lastTime + 1e-12 < settings_.interval) return;
+  if (sim.time() - impl_->lastTime + 1e-12 < settings_.interval && !animationFrameDue(sim.time())) return;
   accumulate(sim);
+}
+
+bool HazardMaps::animationFrameDue(double time) const {
+  const AnimationSettings& a = settings_.animation;
+  return a.enabled && time + 1e-9 * a.interval >= impl_->animationNext * a.interval;
 }
 
 void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use) {
@@ -255,7 +264,15 @@ void HazardMaps::accumulate(const Simulation& sim) {
   const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
   const float minH = float(settings_.minHeight);
   const size_t n = m.cells;
+  // An animation frame records this accumulation's thickness and speed of all material.
+  const bool frame = animationFrameDue(sim.time());
+  if (frame) m.frameThickness.assign(n, 0.f), m.frameSpeed.assign(n, 0.f);
   m.sumBands(sim, all, [&](uint32_t cell) {
+    if (frame) {
+      const float* s = m.sums[0].data() + kSums * cell;
+      m.frameThickness[cell] = s[0] * invArea;
+      if (s[0] * invArea >= minH && s[1] > 0) m.frameSpeed[cell] = s[2] / s[1];
+    }
     const float cosS = m.cosAt(cell);
     for (int l = 0; l < m.layers; ++l) {
       const float* s = m.sums[size_t(l)].data() + kSums * cell;
@@ -270,6 +287,12 @@ void HazardMaps::accumulate(const Simulation& sim) {
       }
     }
   });
+  if (frame) {
+    for (const auto& f : writeAnimationFrame(outDir_, m.animationNext, sim.time(), m.window, m.frameThickness, m.frameSpeed))
+      recordFile(f);
+    // Steps longer than the interval skip frames rather than repeat one.
+    m.animationNext = int(std::floor(sim.time() / settings_.animation.interval + 1e-9)) + 1;
+  }
 }
 
 } // namespace talus

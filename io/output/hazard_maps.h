@@ -61,8 +61,14 @@ public:
   static const char* band(Quantity q);
   static const char* unit(Quantity q);
 
+  /// The film's outcome: {"animation", file or why it was not made} (when enabled).
+  std::vector<std::pair<std::string, std::string>> summary() const override;
+
 private:
   void accumulate(const Simulation& sim);
+  bool animationFrameDue(double time) const;
+  void makeFilm();
+  std::string animationOutcome_;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string outDir_;

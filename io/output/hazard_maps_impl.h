@@ -38,6 +38,8 @@ struct HazardMaps::Impl {
   std::vector<int32_t> rowOf;                  ///< scratch: first splat row + 1 per particle, -1 outside
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
+  int animationNext = 0;                         ///< index of the next animation frame
+  std::vector<float> frameThickness, frameSpeed; ///< that frame's rasters while it is recorded
   double endTime = 0;
   std::shared_ptr<const Sdf> terrain;
   Vec3d origin = Vec3d::Zero();

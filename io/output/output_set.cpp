@@ -7,6 +7,7 @@
 #include "io/output/vdb_frame_writer.h"
 #include "io/output/water_surface_map.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -29,9 +30,11 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
     const double cell = o.maps.cellSize > 0 ? o.maps.cellSize : 2 * run.dx;
     RasterGrid grid = run.dem ? run.dem->grid : HazardMaps::domainGrid(run, cell);
     outputs_.push_back(std::make_unique<HazardMaps>(outDir, grid, run.dem, o.maps));
-    // The run-up and flooding map, on the same grid; it writes nothing when there is no water.
-    outputs_.push_back(std::make_unique<WaterSurfaceMap>(outDir, grid, run.dem, o.waterMaterials, run.particleSpacing,
-                                                         o.maps.quicklook));
+    // The run-up and flooding map, on the same grid, where there is water.
+    const auto& models = run.materialModels;
+    if (!o.waterMaterials.empty() || std::find(models.begin(), models.end(), "water") != models.end())
+      outputs_.push_back(std::make_unique<WaterSurfaceMap>(outDir, grid, run.dem, o.waterMaterials,
+                                                           run.particleSpacing, o.maps.quicklook));
   }
   seconds_.assign(outputs_.size(), 0.0);
 }

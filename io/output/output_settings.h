@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,16 @@ struct PeakFileSettings {
   std::string simHash = "0000000000";  ///< 10 hex digits naming the scene's configuration
 };
 
+/// The film of a run (io/output/animation.h): frames recorded with the hazard maps.
+struct AnimationSettings {
+  bool enabled = false;
+  std::optional<bool> requested; ///< as the scene says; unset: on for scenes on terrain with maps
+  double interval = 0;          ///< s between frames; 0 = end_time / 100
+  std::string quantity = "thickness";
+  int fps = 10;
+  double scaleMax = 0;          ///< top of the colour scale; 0 = the film's largest value
+};
+
 struct MapSettings {
   bool enabled = false;
   double cellSize = 0;       ///< m, when the scene has no DEM; 0 = two grid cells
@@ -68,6 +79,7 @@ struct MapSettings {
   double interval = 0;       ///< s between accumulations; 0 = every step
   std::vector<std::string> erodible; ///< materials whose lost thickness is erosion depth
   PeakFileSettings peakFiles;
+  AnimationSettings animation;
 };
 
 struct OutputSettings {

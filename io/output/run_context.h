@@ -20,6 +20,7 @@ struct RunContext {
   std::shared_ptr<const DemRaster> dem;          ///< the ground as simulated, or null
   std::string crsWkt;                            ///< the DEM's CRS, else the scene's [output] crs
   std::vector<std::string> materialNames;
+  std::vector<std::string> materialModels; ///< per material, its model's name ("water", ...)
 };
 
 } // namespace talus

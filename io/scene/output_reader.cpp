@@ -86,6 +86,24 @@ void readMaps(const ConfigTable& out, const std::vector<std::string>& materialNa
   m.erodible = readMaterialList(*t, "erodible", materialNames);
 }
 
+/// `animation = true` or `animation = { interval, quantity, fps, max }` (docs/outputs.md).
+void readAnimation(const ConfigTable& out, MapSettings& m) {
+  if (!out.has("animation")) return;
+  AnimationSettings& a = m.animation;
+  if (out.values().at("animation").isBool()) {
+    a.requested = out.boolean("animation", false);
+  } else {
+    const ConfigTable* t = out.table("animation");
+    a.requested = t->boolean("enabled", true);
+    a.interval = t->positive("interval", 0, true);
+    a.quantity = t->choice("quantity", a.quantity, {"thickness", "speed"});
+    a.fps = int(t->integer("fps", a.fps, 1, 120));
+    a.scaleMax = t->positive("max", 0, true);
+  }
+  if (*a.requested && !m.enabled)
+    out.fail("animation", "the animation is drawn from rasters the hazard maps record: it needs maps = true");
+}
+
 } // namespace
 
 OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std::string>& materialNames) {
@@ -115,6 +133,7 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   if (out->has("peak_file_format")) s.maps.peakFiles.format = out->choice("peak_file_format", "", {"asc", "tif", "both"});
   if (s.maps.peakFiles.enabled && !s.maps.enabled)
     out->fail("peak_files", "AvaFrame peak files are written from the hazard maps: they need maps = true");
+  readAnimation(*out, s.maps);
 
   std::vector<std::string> used;
   const auto sections = out->tables("sections");

@@ -179,6 +179,7 @@ void readMaterials(const ConfigTable& root, SceneSetup& s) {
     for (const auto& n : s.materialNames)
       if (n == g->name()) tables[i]->fail("name", "duplicate material name '" + n + "'");
     s.materialNames.push_back(g->name());
+    s.materialModels.push_back(g->modelName());
     s.groups.push_back(std::move(g));
   }
 }
@@ -294,6 +295,10 @@ void readOutput(const ConfigTable& root, SceneSetup& s) {
   for (const auto& b : s.bodies)
     if (b.kind == "layer") pf.simType = "ent";
   pf.simHash = fnv1aHex(root.canonicalText()).substr(0, 10);
+  // The film: on by default where there is terrain to show it over, a hundred frames.
+  AnimationSettings& an = s.output.maps.animation;
+  an.enabled = an.requested.value_or(s.output.maps.enabled && s.settings.terrain != nullptr);
+  if (!(an.interval > 0)) an.interval = s.endTime / 100;
 }
 
 } // namespace
@@ -342,6 +347,7 @@ RunContext SceneSetup::runContext() const {
   r.dem = dem;
   r.crsWkt = dem ? dem->grid.crsWkt : output.crsWkt;
   r.materialNames = materialNames;
+  r.materialModels = materialModels;
   return r;
 }
 

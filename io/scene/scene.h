@@ -20,6 +20,7 @@ struct SceneSetup {
   SimulationSettings settings;
   std::vector<std::unique_ptr<MaterialGroup>> groups;
   std::vector<std::string> materialNames;
+  std::vector<std::string> materialModels; ///< per material, its model's name ("water", ...)
   double endTime = 1;
   int particlesPerCell = 8;
   double maxParticles = 2e9; ///< [simulation] max_particles, capped by resourceLimits()

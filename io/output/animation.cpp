@@ -1,0 +1,263 @@
+#include "io/output/animation.h"
+
+#include "io/common/geotiff_writer.h"
+#include "io/common/input_error.h"
+#include "io/common/write_error.h"
+#include "io/output/map_quicklook.h"
+
+#include <gdal_priv.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fcntl.h>
+#include <filesystem>
+#include <limits>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace talus {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr float kNoData = -9999.f;
+
+struct Frame {
+  RasterGrid grid;
+  std::vector<float> values;
+  double time = 0;
+};
+
+std::string frameName(const char* quantity, int index) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_%05d.tif", quantity, index);
+  return name;
+}
+
+Frame readFrame(const std::string& path) {
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
+  if (!ds) throw InputError(path, "cannot read this animation frame (GDAL cannot open it)");
+  Frame f;
+  double gt[6];
+  ds->GetGeoTransform(gt);
+  f.grid.nx = ds->GetRasterXSize(), f.grid.ny = ds->GetRasterYSize();
+  f.grid.originX = gt[0], f.grid.originY = gt[3], f.grid.cellSize = gt[1];
+  f.values.resize(f.grid.size());
+  const CPLErr e = ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, f.grid.nx, f.grid.ny, f.values.data(), f.grid.nx,
+                                                   f.grid.ny, GDT_Float32, 0, 0);
+  const char* t = ds->GetMetadataItem("TALUS_TIME_S");
+  f.time = t ? std::atof(t) : 0;
+  GDALClose(ds);
+  if (e != CE_None) throw InputError(path, "cannot read this animation frame's values");
+  return f;
+}
+
+/// The part of a frame inside the world window (whole cells), or the frame itself.
+Frame crop(const Frame& f, const std::optional<std::array<double, 4>>& w) {
+  if (!w) return f;
+  const double cs = f.grid.cellSize;
+  const int c0 = std::clamp(int(std::floor(((*w)[0] - f.grid.originX) / cs)), 0, f.grid.nx);
+  const int c1 = std::clamp(int(std::ceil(((*w)[2] - f.grid.originX) / cs)), 0, f.grid.nx);
+  const int r0 = std::clamp(int(std::floor((f.grid.originY - (*w)[3]) / cs)), 0, f.grid.ny);
+  const int r1 = std::clamp(int(std::ceil((f.grid.originY - (*w)[1]) / cs)), 0, f.grid.ny);
+  if (c1 <= c0 || r1 <= r0) throw InputError("--window", "the window does not overlap the frames");
+  Frame out = f;
+  out.grid.nx = c1 - c0, out.grid.ny = r1 - r0;
+  out.grid.originX = f.grid.originX + c0 * cs, out.grid.originY = f.grid.originY - r0 * cs;
+  out.values.assign(out.grid.size(), 0.f);
+  for (int r = 0; r < out.grid.ny; ++r)
+    for (int c = 0; c < out.grid.nx; ++c) out.values[out.grid.index(c, r)] = f.values[f.grid.index(c0 + c, r0 + r)];
+  return out;
+}
+
+/// The ground under each cell of `grid` from maps/ground_elevation.tif (nearest cell), or none.
+std::vector<float> groundOn(const std::string& dir, const RasterGrid& grid) {
+  const std::string path = (fs::path(dir) / "maps" / "ground_elevation.tif").string();
+  if (!fs::exists(path)) return {};
+  const Frame g = readFrame(path);
+  std::vector<float> z(grid.size(), std::numeric_limits<float>::quiet_NaN());
+  for (int r = 0; r < grid.ny; ++r)
+    for (int c = 0; c < grid.nx; ++c) {
+      int gc = 0, gr = 0;
+      if (g.grid.locate(grid.cellCentreX(c), grid.cellCentreY(r), gc, gr)) {
+        const float v = g.values[g.grid.index(gc, gr)];
+        if (v != kNoData) z[grid.index(c, r)] = v;
+      }
+    }
+  return z;
+}
+
+/// `ffmpeg` on the PATH, or "".
+std::string findFfmpeg() {
+  const char* path = std::getenv("PATH");
+  std::string p = path ? path : "";
+  for (size_t a = 0; a <= p.size();) {
+    const size_t b = std::min(p.find(':', a), p.size());
+    const fs::path exe = fs::path(p.substr(a, b - a)) / "ffmpeg";
+    if (b > a && access(exe.c_str(), X_OK) == 0) return exe.string();
+    a = b + 1;
+  }
+  return "";
+}
+
+/// Starts ffmpeg with `args`, its messages appended to `log`; the process id, or -1.
+pid_t startFfmpeg(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+  std::vector<char*> argv{const_cast<char*>(exe.c_str())};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+/// True when the process exited with 0.
+bool succeeded(pid_t pid) {
+  if (pid < 0) return false;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+std::string temporary(const std::string& out) { return out + ".tmp" + fs::path(out).extension().string(); }
+
+/// Starts encoding the PNG frames into `out`'s temporary name (see finishEncoding).
+pid_t startEncoding(const std::string& exe, const std::string& pattern, const std::string& out, int fps,
+                    const std::string& filter, const std::string& log) {
+  std::vector<std::string> args{"-hide_banner", "-loglevel", "error", "-y", "-framerate", std::to_string(fps),
+                                "-i", pattern, "-vf", filter};
+  // x264's bitstream depends on its thread count, which it takes from the CPUs it may use (one
+  // under mpirun's binding): a fixed count makes the film the same file on every machine.
+  if (fs::path(out).extension() == ".mp4")
+    args.insert(args.end(), {"-c:v", "libx264", "-threads", "4", "-pix_fmt", "yuv420p", "-crf", "23", "-movflags",
+                             "+faststart"});
+  args.push_back(temporary(out));
+  return startFfmpeg(exe, args, log);
+}
+
+/// Waits for the encoder; renames its file into place when whole, else removes it.
+bool finishEncoding(pid_t pid, const std::string& out) {
+  std::error_code ec;
+  if (!succeeded(pid)) {
+    fs::remove(temporary(out), ec);
+    return false;
+  }
+  fs::rename(temporary(out), out, ec);
+  if (ec) throw WriteError(out, ec.message());
+  return true;
+}
+
+} // namespace
+
+std::vector<std::string> writeAnimationFrame(const std::string& dir, int index, double time, const RasterGrid& grid,
+                                             const std::vector<float>& thickness, const std::vector<float>& speed) {
+  const fs::path rasters = fs::path(dir) / "animation" / "rasters";
+  std::error_code ec;
+  fs::create_directories(rasters, ec);
+  if (ec) throw WriteError(rasters.string(), ec.message());
+  std::vector<std::string> files;
+  const std::vector<float>* values[2] = {&thickness, &speed};
+  const char* units[2] = {"m", "m/s"};
+  for (int q = 0; q < 2; ++q) {
+    // Zero where no flow (the quick-look shows the relief there); no data only where unknown.
+    std::vector<float> v = *values[q];
+    for (float& x : v)
+      if (std::isnan(x)) x = kNoData;
+    GeoTiffBand b;
+    b.description = q == 0 ? "flow thickness (vertical)" : "speed (mass-weighted mean)";
+    b.unit = units[q];
+    b.nodata = kNoData;
+    b.metadata = {{"TALUS_TIME_S", std::to_string(time)}, {"TALUS_QUANTITY", animationQuantities()[size_t(q)]}};
+    const std::string name = frameName(animationQuantities()[size_t(q)], index);
+    writeGeoTiff((rasters / name).string(), grid, v, b);
+    files.push_back("animation/rasters/" + name);
+  }
+  return files;
+}
+
+AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& style) {
+  const auto& qs = animationQuantities();
+  const int qi = int(std::find(qs.begin(), qs.end(), style.quantity) - qs.begin());
+  if (qi == int(qs.size())) throw InputError("--quantity", "'" + style.quantity + "': choose thickness or speed");
+  if (style.fps < 1 || style.fps > 120) throw InputError("--fps", "must be 1 to 120");
+  std::vector<std::string> frames;
+  const fs::path rasters = fs::path(dir) / "animation" / "rasters";
+  for (int i = 0; fs::exists(rasters / frameName(qs[size_t(qi)], i)); ++i)
+    frames.push_back((rasters / frameName(qs[size_t(qi)], i)).string());
+  if (frames.empty())
+    throw InputError(rasters.string(), std::string("no ") + qs[size_t(qi)] + " frames here: run the scene with [output] animation = true");
+  // The colour scale is the film's: the largest value of any frame unless given.
+  double top = style.scaleMax;
+  if (!(top > 0)) {
+    float m = 0;
+    for (const auto& f : frames)
+      for (float v : crop(readFrame(f), style.window).values)
+        if (v != kNoData && std::isfinite(v)) m = std::max(m, v);
+    top = chart::niceCeil(m > 0 ? m : 1);
+  }
+  const fs::path png = fs::path(dir) / "animation" / "png";
+  fs::remove_all(png);
+  fs::create_directories(png);
+  const std::vector<float> ground = groundOn(dir, crop(readFrame(frames[0]), style.window).grid);
+  // Frames are drawn side by side (each its own cairo surface and file).
+  tbb::parallel_for(size_t(0), frames.size(), [&](size_t i) {
+    const Frame f = crop(readFrame(frames[i]), style.window);
+    QuicklookStyle look;
+    look.title = qi == 0 ? "Flow thickness (vertical)" : "Speed";
+    char t[64];
+    std::snprintf(t, sizeof t, "t = %.1f s", f.time);
+    look.subtitle = t;
+    look.unit = qi == 0 ? "m" : "m/s";
+    look.ramp = qi == 0 ? chart::Ramp::Viridis : chart::Ramp::Plasma;
+    look.scaleMax = top;
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05zu.png", i);
+    writeMapQuicklook((png / name).string(), f.grid, f.values, ground, look, kNoData);
+  });
+  AnimationResult r;
+  r.frames = int(frames.size());
+  const std::string exe = findFfmpeg();
+  if (exe.empty()) {
+    r.problem = "ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/";
+    return r;
+  }
+  const std::string pattern = (png / "frame_%05d.png").string(), log = (fs::path(dir) / "animation" / "ffmpeg.log").string();
+  // H.264 wants even sizes; the GIF gets its own palette, at a page's width.
+  const std::string size = style.width > 0 ? "scale=" + std::to_string(style.width / 2 * 2) + ":-2"
+                                           : "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white";
+  const std::string gif = "scale=" + std::to_string(style.gifWidth) +
+                          ":-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=128[p];[b][p]paletteuse=dither=bayer";
+  // The two films are encoded at once (two processes).
+  const std::pair<std::string, std::string> films[2] = {{"animation.mp4", size}, {"animation.gif", gif}};
+  pid_t pids[2];
+  for (int k = 0; k < 2; ++k)
+    pids[k] = startEncoding(exe, pattern, (fs::path(dir) / films[k].first).string(), style.fps, films[k].second, log);
+  bool ok[2];
+  for (int k = 0; k < 2; ++k) ok[k] = finishEncoding(pids[k], (fs::path(dir) / films[k].first).string());
+  for (int k = 0; k < 2; ++k) {
+    if (!ok[k]) {
+      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); the drawn frames are in animation/png/";
+      return r;
+    }
+    r.files.push_back(films[k].first);
+  }
+  fs::remove_all(png); // the films are made; the rasters remain the data
+  fs::remove(log);
+  return r;
+}
+
+} // namespace talus

@@ -1,0 +1,100 @@
+// The run's film (io/output/animation.h): frame rasters that hold the flow's volume, a film with
+// one picture per raster, `talus animate` with other choices, and a run without FFmpeg.
+#include "process_support.h"
+#include "test_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+using namespace talus;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Sum of a frame's values times the cell area (its volume for a thickness), and its time.
+std::pair<double, double> frameVolume(const std::string& path) {
+  GDALAllRegister();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
+  if (!ds) return {NAN, NAN};
+  double gt[6];
+  ds->GetGeoTransform(gt);
+  const int nx = ds->GetRasterXSize(), ny = ds->GetRasterYSize();
+  std::vector<float> v(size_t(nx) * ny);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0), CE_None);
+  const double t = std::atof(ds->GetMetadataItem("TALUS_TIME_S"));
+  GDALClose(ds);
+  double sum = 0;
+  for (float x : v)
+    if (x > 0) sum += x;
+  return {sum * gt[1] * gt[1], t};
+}
+
+const std::string kBinary = TALUS_BINARY;
+// The default scene (rock onto a snow cover, on terrain: the film is on by default) for 1 s,
+// a frame every 0.1 s.
+const std::string kRun = " run --quiet --set simulation.end_time=1 --set output.animation.interval=0.1 --set output.h5=false"
+                         " --set output.vdb=false --out ";
+
+} // namespace
+
+TEST(Animation, FramesHoldTheFlowsVolumeAndTheFilmHasAPictureForEach) {
+  const std::string dir = test::tempDir("animation");
+  std::string log;
+  ASSERT_EQ(test::shell("\"" + kBinary + "\"" + kRun + dir + "/run", log), 0) << log;
+  // Eleven frames, 0 to 1 s: the first at the start, then whenever a step passes a multiple of
+  // the interval.
+  for (int i = 0; i <= 10; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/run/animation/rasters/thickness_%05d.tif", i);
+    const auto [volume, time] = frameVolume(dir + name);
+    // The bilinear splat keeps every particle's volume on the map (the flow stays inside the
+    // domain): the particles' 475 728 m3 (85 288 rock + 390 440 snow, `talus check`) within
+    // float sums over ~1e4 cells.
+    EXPECT_NEAR(volume, 475728.0, 475728.0 * 1e-4) << name;
+    EXPECT_NEAR(time, 0.1 * i, 0.02) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/run/animation/rasters/thickness_00011.tif"));
+  if (test::shell("ffprobe -version", log) != 0) GTEST_SKIP() << "ffprobe is not installed (apt-get install ffmpeg)";
+  ASSERT_EQ(test::shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames,codec_name "
+                  "-of csv=p=0 " + dir + "/run/animation.mp4", log), 0) << log;
+  EXPECT_EQ(log, "h264,11\n");
+  EXPECT_GT(fs::file_size(dir + "/run/animation.gif"), 1000u);
+  EXPECT_FALSE(fs::exists(dir + "/run/animation/png")); // the drawn frames go once encoded
+  std::ifstream summary(dir + "/run/summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), {});
+  EXPECT_NE(text.find("\"animation\": \"animation.mp4\""), std::string::npos);
+}
+
+TEST(Animation, TalusAnimateRemakesTheFilmWithOtherChoicesAndNamesWhatIsWrong) {
+  const std::string dir = test::tempDir("animate_command");
+  std::string log;
+  ASSERT_EQ(test::shell("\"" + kBinary + "\"" + kRun + dir + "/run", log), 0) << log;
+  if (test::shell("ffprobe -version", log) != 0) GTEST_SKIP() << "ffprobe is not installed (apt-get install ffmpeg)";
+  ASSERT_EQ(test::shell("\"" + kBinary + "\" animate " + dir + "/run --quantity speed --fps 5 --width 320", log), 0) << log;
+  ASSERT_EQ(test::shell("ffprobe -v error -select_streams v:0 -show_entries stream=width,r_frame_rate -of csv=p=0 " + dir +
+                  "/run/animation.mp4", log), 0) << log;
+  EXPECT_EQ(log, "320,5/1\n");
+  // A folder without frames, and a window beside the frames: one line each, exit 2.
+  EXPECT_EQ(test::shell("\"" + kBinary + "\" animate " + dir, log), 2);
+  EXPECT_NE(log.find("talus: error: " + dir + "/animation/rasters: no thickness frames here"), std::string::npos) << log;
+  EXPECT_EQ(test::shell("\"" + kBinary + "\" animate " + dir + "/run --window 0 0 10 10", log), 2);
+  EXPECT_NE(log.find("--window: the window does not overlap the frames"), std::string::npos) << log;
+}
+
+TEST(Animation, WithoutFfmpegTheRunCompletesAndSaysWhereTheDrawnFramesAre) {
+  const std::string dir = test::tempDir("animation_no_ffmpeg");
+  std::string log;
+  ASSERT_EQ(test::shell("PATH=/nonexistent \"" + kBinary + "\"" + kRun + dir + "/run", log), 0) << log;
+  std::ifstream summary(dir + "/run/summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), {});
+  EXPECT_NE(text.find("\"animation\": \"ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/\""),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/run/animation/png/frame_00010.png"));
+  EXPECT_FALSE(fs::exists(dir + "/run/animation.mp4"));
+  EXPECT_EQ(test::shell("PATH=/nonexistent \"" + kBinary + "\" animate " + dir + "/run", log), 1);
+  EXPECT_EQ(log, "talus: error: ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/\n");
+}
