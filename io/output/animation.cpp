@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <csignal>
 #include <fcntl.h>
 #include <filesystem>
 #include <limits>
@@ -108,58 +109,95 @@ std::string findFfmpeg() {
   return "";
 }
 
-/// Starts ffmpeg with `args`, its messages appended to `log`; the process id, or -1.
-pid_t startFfmpeg(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
-  std::vector<char*> argv{const_cast<char*>(exe.c_str())};
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
-}
+/// ffmpeg encoding one film from raw frames written to its standard input.
+struct Encoder {
+  pid_t pid = -1;
+  int fd = -1; ///< the pipe's writing end
+  std::string out;
+  std::string temporary() const { return out + ".tmp" + fs::path(out).extension().string(); }
+};
 
-/// True when the process exited with 0.
-bool succeeded(pid_t pid) {
-  if (pid < 0) return false;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
-std::string temporary(const std::string& out) { return out + ".tmp" + fs::path(out).extension().string(); }
-
-/// Starts encoding the PNG frames into `out`'s temporary name (see finishEncoding).
-pid_t startEncoding(const std::string& exe, const std::string& pattern, const std::string& out, int fps,
-                    const std::string& filter, const std::string& log) {
-  std::vector<std::string> args{"-hide_banner", "-loglevel", "error", "-y", "-framerate", std::to_string(fps),
-                                "-i", pattern, "-vf", filter};
+/// Starts ffmpeg reading width x height BGRA frames from a pipe into `out`'s temporary name,
+/// through `filter`; its messages go to `log`. pid -1 when it cannot start.
+Encoder startEncoder(const std::string& exe, int width, int height, int fps, const std::string& filter,
+                     const std::string& out, const std::string& log) {
+  Encoder e;
+  e.out = out;
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return e;
+  // Cairo's ARGB32 words in memory: B, G, R, A on a little-endian machine.
+  const char* pixfmt = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ ? "bgra" : "argb";
+  std::vector<std::string> args{exe, "-hide_banner", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", pixfmt,
+                                "-s", std::to_string(width) + "x" + std::to_string(height), "-framerate",
+                                std::to_string(fps), "-i", "pipe:0", "-vf", filter};
   // x264's bitstream depends on its thread count, which it takes from the CPUs it may use (one
   // under mpirun's binding): a fixed count makes the film the same file on every machine.
   if (fs::path(out).extension() == ".mp4")
     args.insert(args.end(), {"-c:v", "libx264", "-threads", "4", "-pix_fmt", "yuv420p", "-crf", "23", "-movflags",
                              "+faststart"});
-  args.push_back(temporary(out));
-  return startFfmpeg(exe, args, log);
+  args.push_back(e.temporary());
+  std::vector<char*> argv;
+  for (auto& x : args) argv.push_back(x.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  const int rc = posix_spawn(&e.pid, exe.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  ::close(fds[0]);
+  if (rc != 0) {
+    ::close(fds[1]);
+    e.pid = -1;
+    return e;
+  }
+  e.fd = fds[1];
+  return e;
 }
 
-/// Waits for the encoder; renames its file into place when whole, else removes it.
-bool finishEncoding(pid_t pid, const std::string& out) {
+/// Writes one frame; false (and the pipe closed) once ffmpeg has stopped reading.
+bool feed(Encoder& e, const void* data, size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (e.fd >= 0 && n > 0) {
+    const ssize_t w = ::write(e.fd, p, n);
+    if (w < 0 && errno == EINTR) continue;
+    if (w < 0) {
+      ::close(e.fd);
+      e.fd = -1;
+      return false;
+    }
+    p += w, n -= size_t(w);
+  }
+  return e.fd >= 0;
+}
+
+/// Ends the input, waits for ffmpeg; renames its file into place when whole, else removes it.
+bool finish(Encoder& e) {
+  if (e.fd >= 0) ::close(e.fd), e.fd = -1;
+  int status = 0;
+  while (e.pid >= 0 && waitpid(e.pid, &status, 0) < 0 && errno == EINTR) {
+  }
   std::error_code ec;
-  if (!succeeded(pid)) {
-    fs::remove(temporary(out), ec);
+  if (e.pid < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fs::remove(e.temporary(), ec);
     return false;
   }
-  fs::rename(temporary(out), out, ec);
-  if (ec) throw WriteError(out, ec.message());
+  fs::rename(e.temporary(), e.out, ec);
+  if (ec) throw WriteError(e.out, ec.message());
   return true;
 }
+
+/// Ignores SIGPIPE while alive (a stopped encoder is reported by write's EPIPE instead).
+struct IgnoreSigpipe {
+  struct sigaction old{};
+  IgnoreSigpipe() {
+    struct sigaction ign{};
+    ign.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &ign, &old);
+  }
+  ~IgnoreSigpipe() { sigaction(SIGPIPE, &old, nullptr); }
+};
 
 } // namespace
 
@@ -209,14 +247,9 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
         if (v != kNoData && std::isfinite(v)) m = std::max(m, v);
     top = chart::niceCeil(m > 0 ? m : 1);
   }
-  const fs::path png = fs::path(dir) / "animation" / "png";
-  fs::remove_all(png);
-  fs::create_directories(png);
   const std::vector<float> ground = groundOn(dir, crop(readFrame(frames[0]), style.window).grid);
-  // Frames are drawn side by side (each its own cairo surface and file).
-  tbb::parallel_for(size_t(0), frames.size(), [&](size_t i) {
-    const Frame f = crop(readFrame(frames[i]), style.window);
-    QuicklookStyle look;
+  auto frame = [&](size_t i, QuicklookStyle& look) {
+    Frame f = crop(readFrame(frames[i]), style.window);
     look.title = qi == 0 ? "Flow thickness (vertical)" : "Speed";
     char t[64];
     std::snprintf(t, sizeof t, "t = %.1f s", f.time);
@@ -224,39 +257,68 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
     look.unit = qi == 0 ? "m" : "m/s";
     look.ramp = qi == 0 ? chart::Ramp::Viridis : chart::Ramp::Plasma;
     look.scaleMax = top;
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05zu.png", i);
-    writeMapQuicklook((png / name).string(), f.grid, f.values, ground, look, kNoData);
-  });
+    return f;
+  };
   AnimationResult r;
   r.frames = int(frames.size());
   const std::string exe = findFfmpeg();
   if (exe.empty()) {
+    // The pictures, for whoever encodes them another way (frames drawn side by side).
+    const fs::path png = fs::path(dir) / "animation" / "png";
+    fs::remove_all(png);
+    fs::create_directories(png);
+    tbb::parallel_for(size_t(0), frames.size(), [&](size_t i) {
+      QuicklookStyle look;
+      const Frame f = frame(i, look);
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%05zu.png", i);
+      writeMapQuicklook((png / name).string(), f.grid, f.values, ground, look, kNoData);
+    });
     r.problem = "ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/";
     return r;
   }
-  const std::string pattern = (png / "frame_%05d.png").string(), log = (fs::path(dir) / "animation" / "ffmpeg.log").string();
-  // H.264 wants even sizes; the GIF gets its own palette, at a page's width.
+  auto draw = [&](size_t i) {
+    QuicklookStyle look;
+    const Frame f = frame(i, look);
+    return drawMapQuicklook(f.grid, f.values, ground, look, kNoData);
+  };
+  const MapImage first = draw(0);
+  const std::string log = (fs::path(dir) / "animation" / "ffmpeg.log").string();
+  fs::remove(log);
+  // H.264 wants even sizes; the GIF gets its own palette, at a page's width. Both films are
+  // encoded at once, fed the same raw pictures (no PNG in between: encoding and decoding them
+  // was most of the film's cost).
   const std::string size = style.width > 0 ? "scale=" + std::to_string(style.width / 2 * 2) + ":-2"
                                            : "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white";
   const std::string gif = "scale=" + std::to_string(style.gifWidth) +
                           ":-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=128[p];[b][p]paletteuse=dither=bayer";
-  // The two films are encoded at once (two processes).
   const std::pair<std::string, std::string> films[2] = {{"animation.mp4", size}, {"animation.gif", gif}};
-  pid_t pids[2];
+  IgnoreSigpipe quiet;
+  Encoder enc[2];
   for (int k = 0; k < 2; ++k)
-    pids[k] = startEncoding(exe, pattern, (fs::path(dir) / films[k].first).string(), style.fps, films[k].second, log);
+    enc[k] = startEncoder(exe, first.width, first.height, style.fps, films[k].second,
+                          (fs::path(dir) / films[k].first).string(), log);
+  constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
+  for (size_t b = 0; b < frames.size(); b += kBatch) {
+    std::vector<MapImage> batch(std::min(kBatch, frames.size() - b));
+    tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
+    for (const MapImage& m : batch)
+      for (Encoder& e : enc)
+        if (m.width == first.width && m.height == first.height)
+          feed(e, m.pixels.data(), m.pixels.size() * sizeof(uint32_t));
+  }
   bool ok[2];
-  for (int k = 0; k < 2; ++k) ok[k] = finishEncoding(pids[k], (fs::path(dir) / films[k].first).string());
+  for (int k = 0; k < 2; ++k) ok[k] = finish(enc[k]);
   for (int k = 0; k < 2; ++k) {
     if (!ok[k]) {
-      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); the drawn frames are in animation/png/";
+      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); `talus animate` "
+                  "makes it again from animation/rasters/";
       return r;
     }
     r.files.push_back(films[k].first);
   }
-  fs::remove_all(png); // the films are made; the rasters remain the data
   fs::remove(log);
+  fs::remove_all(fs::path(dir) / "animation" / "png"); // drawn by an earlier run without ffmpeg
   return r;
 }
 

@@ -52,8 +52,9 @@ std::string lengthLabel(double metres) {
 
 } // namespace
 
-void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
-                       const std::vector<float>& heights, const QuicklookStyle& style, float nodata) {
+/// The quick-look's page (the caller destroys it).
+static cairo_surface_t* drawPage(const RasterGrid& grid, const std::vector<float>& values,
+                                 const std::vector<float>& heights, const QuicklookStyle& style, float nodata) {
   // Reduce large rasters by blocks of f x f cells (maximum for values, mean for the hillshade).
   const int f = std::max(1, int(std::ceil(std::max(grid.nx, grid.ny) / 900.0)));
   const int w = (grid.nx + f - 1) / f, h = (grid.ny + f - 1) / f;
@@ -201,15 +202,35 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
   }
 
   cairo_destroy(cr);
+  cairo_surface_destroy(img);
+  return page;
+}
+
+void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
+                       const std::vector<float>& heights, const QuicklookStyle& style, float nodata) {
+  cairo_surface_t* page = drawPage(grid, values, heights, style, nodata);
   try {
     chart::writePng(page, path);
   } catch (...) {
     cairo_surface_destroy(page);
-    cairo_surface_destroy(img);
     throw;
   }
   cairo_surface_destroy(page);
-  cairo_surface_destroy(img);
+}
+
+MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const std::vector<float>& heights,
+                          const QuicklookStyle& style, float nodata) {
+  cairo_surface_t* page = drawPage(grid, values, heights, style, nodata);
+  cairo_surface_flush(page);
+  MapImage m;
+  m.width = cairo_image_surface_get_width(page), m.height = cairo_image_surface_get_height(page);
+  const int stride = cairo_image_surface_get_stride(page) / 4;
+  const auto* px = reinterpret_cast<const uint32_t*>(cairo_image_surface_get_data(page));
+  m.pixels.resize(size_t(m.width) * m.height);
+  for (int r = 0; r < m.height; ++r)
+    std::copy(px + size_t(r) * stride, px + size_t(r) * stride + m.width, m.pixels.begin() + size_t(r) * m.width);
+  cairo_surface_destroy(page);
+  return m;
 }
 
 } // namespace talus

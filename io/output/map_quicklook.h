@@ -6,6 +6,7 @@
 #include "io/common/chart_drawing.h"
 #include "io/common/raster_grid.h"
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,15 @@ struct QuicklookStyle {
 /// than about 900 px are reduced by taking the maximum of each block of cells, so peaks survive.
 void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
                        const std::vector<float>& heights, const QuicklookStyle& style, float nodata = -9999);
+
+/// The same picture in memory: width x height pixels, row by row without padding, each a
+/// native-endian 0xAARRGGBB word (cairo's ARGB32; opaque), i.e. bytes B, G, R, A on x86.
+struct MapImage {
+  int width = 0, height = 0;
+  std::vector<uint32_t> pixels;
+};
+MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const std::vector<float>& heights,
+                          const QuicklookStyle& style, float nodata = -9999);
 
 /// Hillshade in [0, 1] (sun from the north-west, 45 degrees up) of `heights` on `grid`; NaN
 /// where the height or all its neighbours are missing.
