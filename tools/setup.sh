@@ -18,9 +18,14 @@ packages=(
   libgdal-dev gdal-bin libcairo2-dev
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-h5py python3-matplotlib
+  pybind11-dev python3-dev python3-numpy
   ffmpeg
 )
+# What only the tests use: pytest and the examples' h5py and Matplotlib (the Python module), and
+# Chromium, which loads report.html headless.
+if [ "$mode" != demo ]; then
+  packages+=(python3-pytest python3-h5py python3-matplotlib chromium)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -100,6 +100,7 @@ struct OutputSettings {
   bool series = true;       ///< series.csv
   double seriesInterval = 0; ///< s between rows; 0 = end_time / 1000
   bool plots = true;        ///< plots/*.png from the series
+  bool report = true;       ///< report.html: the run on one page (io/run/run_report.h)
   bool loads = true;        ///< force and moment on every collider in the series
   std::vector<std::string> waterMaterials; ///< explicit; otherwise models named "water"
   std::vector<SectionSpec> sections;

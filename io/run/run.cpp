@@ -6,6 +6,7 @@
 #include "io/run/checkpoint.h"
 #include "io/run/progress_bar.h"
 #include "io/run/run_ranks.h"
+#include "io/run/run_report.h"
 #include "io/run/run_signals.h"
 #include "io/run/run_summary.h"
 
@@ -237,7 +238,11 @@ void Run::finish() {
   }
   if (s.ranks.active()) s.info.ranks = rankFigures(*sim_);
   record();
-  s.ranks.onRoot([&] { writeSummaryJson(s.summaryFile, *s.view, s.info); });
+  s.ranks.onRoot([&] {
+    writeSummaryJson(s.summaryFile, *s.view, s.info);
+    if (s.output.report) writeRunReport(res_.outDir, res_.files);
+  });
+  if (s.output.report) res_.files.push_back("report.html");
   ended_ = true;
 }
 

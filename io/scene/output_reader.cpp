@@ -126,6 +126,7 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   s.seriesInterval = out->positive("series_interval", 0, true);
   s.checkpointInterval = out->has("checkpoint_interval") ? out->positive("checkpoint_interval", 0, true) : -1.0;
   s.plots = out->boolean("plots", s.plots);
+  s.report = out->boolean("report", s.report);
   s.loads = out->boolean("loads", s.loads);
   s.waterMaterials = readMaterialList(*out, "water_materials", materialNames);
   readMaps(*out, materialNames, s.maps);

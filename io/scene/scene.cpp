@@ -358,7 +358,7 @@ namespace {
 bool resumeMayChange(const std::string& key) {
   static const char* const keys[] = {"simulation.end_time",     "output.directory", "output.frame_interval",
                                      "output.checkpoint_interval", "output.h5",        "output.vdb",
-                                     "output.vdb_points",          "output.ply",       "output.plots",
+                                     "output.vdb_points",          "output.ply",       "output.plots", "output.report",
                                      "output.series_interval"};
   for (const char* k : keys)
     if (key == k) return true;
