@@ -1,4 +1,5 @@
 #include "hazard/ensemble_aggregate.h"
+#include "hazard/ensemble_report.h"
 
 #include "hazard/aimec.h"
 #include "hazard/ensemble_runner.h"
@@ -260,6 +261,9 @@ AggregateReport aggregate(const std::string& dirIn, const Plan& plan, const Ense
     write("area_pft_m2", &MemberOutcome::areaPft);
     rep.files.push_back("morris.csv");
   }
+  // The ensemble on one page: members, screening, maps and run-out.
+  writeEnsembleReport(dir.string(), rep.files);
+  rep.files.push_back("report.html");
   return rep;
 }
 

@@ -60,3 +60,24 @@ TEST(RunReport, ReportFalseWritesNone) {
   EXPECT_FALSE(fs::exists(dir + "/report.html"));
   EXPECT_TRUE(fs::exists(dir + "/summary.json"));
 }
+
+TEST(RunReport, AnEnsemblesPageListsItsMembersInATableThatSorts) {
+  const std::string dir = test::tempDir("ensemble_report");
+  std::string log;
+  ASSERT_EQ(test::shell("\"" + kBinary + "\" ensemble " + TALUS_SOURCE_DIR + "/data/scenes/default.toml --vary "
+                        "terrain.friction=0.3:0.5 --samples 2 --jobs 2 --set simulation.end_time=0.5 --out " + dir, log), 0)
+      << log;
+  const std::string page = test::slurp(dir + "/report.html");
+  ASSERT_FALSE(page.empty());
+  EXPECT_NE(page.find("\"kind\": \"ensemble\""), std::string::npos);
+  EXPECT_NE(page.find("\"terrain.friction\": 0.3"), std::string::npos); // members.csv as numbers
+  if (test::shell("chromium --version", log) != 0) GTEST_SKIP() << "Chromium is not installed (apt-get install chromium)";
+  ASSERT_EQ(test::shell("chromium --headless=new --no-sandbox --disable-gpu --dump-dom file://" + dir +
+                        "/report.html 2>/dev/null", log), 0);
+  EXPECT_NE(log.find("data-ready=\"yes\""), std::string::npos) << "the page's script did not finish";
+  EXPECT_NE(log.find("<pre id=\"errors\"></pre>"), std::string::npos) << "script errors: " << log.substr(0, 2000);
+  EXPECT_NE(log.find("2 of 2 members completed"), std::string::npos);
+  const size_t table = log.find("id=\"member-table\"");
+  ASSERT_NE(table, std::string::npos);
+  EXPECT_EQ(count(log.substr(table, log.find("</table>", table) - table), "<tr>"), 3u); // header and two members
+}

@@ -3,10 +3,10 @@
 #include "io/common/write_error.h"
 #include "io/output/output_set.h"
 #include "io/output/particle_writer.h"
+#include "io/output/report_page.h"
 #include "io/run/checkpoint.h"
 #include "io/run/progress_bar.h"
 #include "io/run/run_ranks.h"
-#include "io/run/run_report.h"
 #include "io/run/run_signals.h"
 #include "io/run/run_summary.h"
 
@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <tbb/global_control.h>
@@ -240,7 +242,10 @@ void Run::finish() {
   record();
   s.ranks.onRoot([&] {
     writeSummaryJson(s.summaryFile, *s.view, s.info);
-    if (s.output.report) writeRunReport(res_.outDir, res_.files);
+    if (s.output.report) {
+      std::ifstream in(s.summaryFile, std::ios::binary);
+      writeReportPage(res_.outDir, std::string(std::istreambuf_iterator<char>(in), {}), res_.files);
+    }
   });
   if (s.output.report) res_.files.push_back("report.html");
   ended_ = true;

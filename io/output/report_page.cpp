@@ -1,4 +1,4 @@
-#include "io/run/run_report.h"
+#include "io/output/report_page.h"
 
 #include "io/common/atomic_file.h"
 #include "io/common/write_error.h"
@@ -52,16 +52,15 @@ std::string mimeOf(const std::string& name) {
 
 /// The pictures a page shows: quick-looks of maps, plots, and the film (the MP4, else the GIF).
 bool shown(const std::string& f, bool haveMp4) {
-  if (f.rfind("maps/", 0) == 0 || f.rfind("plots/", 0) == 0) return mimeOf(f) == "image/png";
+  if (f.rfind("maps/", 0) == 0 || f.rfind("plots/", 0) == 0 || f == "runout.png") return mimeOf(f) == "image/png";
   return f == "animation.mp4" || (f == "animation.gif" && !haveMp4);
 }
 
 } // namespace
 
-void writeRunReport(const std::string& dir, const std::vector<std::string>& files) {
+void writeReportPage(const std::string& dir, const std::string& summaryJson, const std::vector<std::string>& files) {
   const fs::path root(dir);
-  std::string summary = readBytes(root / "summary.json");
-  if (summary.empty()) summary = "{}";
+  const std::string summary = summaryJson.empty() ? "{}" : summaryJson;
   bool haveMp4 = false;
   for (const auto& f : files) haveMp4 = haveMp4 || (f == "animation.mp4" && fs::exists(root / f));
   std::string media = "{";
