@@ -14,6 +14,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -199,6 +200,48 @@ struct IgnoreSigpipe {
   ~IgnoreSigpipe() { sigaction(SIGPIPE, &old, nullptr); }
 };
 
+/// Draws the `n` pictures with `draw` (eight at a time, side by side) and feeds them raw to two
+/// ffmpeg processes at once, one per film (no PNG in between: encoding and decoding them was
+/// most of the film's cost). The films made go to r.files, a failure to r.problem.
+void encodeFilms(const std::string& exe, const std::string& dir, const AnimationStyle& style, size_t n,
+                 const std::function<MapImage(size_t)>& draw, AnimationResult& r) {
+  const MapImage first = draw(0);
+  const std::string log = (fs::path(dir) / "animation" / "ffmpeg.log").string();
+  fs::remove(log);
+  // H.264 wants even sizes; the GIF gets its own palette, at a page's width.
+  const std::string size = style.width > 0 ? "scale=" + std::to_string(style.width / 2 * 2) + ":-2"
+                                           : "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white";
+  const std::string gif = "scale=" + std::to_string(style.gifWidth) +
+                          ":-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=128[p];[b][p]paletteuse=dither=bayer";
+  const std::pair<std::string, std::string> films[2] = {{"animation.mp4", size}, {"animation.gif", gif}};
+  IgnoreSigpipe quiet;
+  Encoder enc[2];
+  for (int k = 0; k < 2; ++k)
+    enc[k] = startEncoder(exe, first.width, first.height, style.fps, films[k].second,
+                          (fs::path(dir) / films[k].first).string(), log);
+  constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
+  for (size_t b = 0; b < n; b += kBatch) {
+    std::vector<MapImage> batch(std::min(kBatch, n - b));
+    tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
+    for (const MapImage& m : batch)
+      for (Encoder& e : enc)
+        if (m.width == first.width && m.height == first.height)
+          feed(e, m.pixels.data(), m.pixels.size() * sizeof(uint32_t));
+  }
+  bool ok[2];
+  for (int k = 0; k < 2; ++k) ok[k] = finish(enc[k]);
+  for (int k = 0; k < 2; ++k) {
+    if (!ok[k]) {
+      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); `talus animate` "
+                  "makes it again from animation/rasters/";
+      return;
+    }
+    r.files.push_back(films[k].first);
+  }
+  fs::remove(log);
+  fs::remove_all(fs::path(dir) / "animation" / "png"); // drawn by an earlier run without ffmpeg
+}
+
 } // namespace
 
 std::vector<std::string> writeAnimationFrame(const std::string& dir, int index, double time, const RasterGrid& grid,
@@ -282,43 +325,7 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
     const Frame f = frame(i, look);
     return drawMapQuicklook(f.grid, f.values, ground, look, kNoData);
   };
-  const MapImage first = draw(0);
-  const std::string log = (fs::path(dir) / "animation" / "ffmpeg.log").string();
-  fs::remove(log);
-  // H.264 wants even sizes; the GIF gets its own palette, at a page's width. Both films are
-  // encoded at once, fed the same raw pictures (no PNG in between: encoding and decoding them
-  // was most of the film's cost).
-  const std::string size = style.width > 0 ? "scale=" + std::to_string(style.width / 2 * 2) + ":-2"
-                                           : "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white";
-  const std::string gif = "scale=" + std::to_string(style.gifWidth) +
-                          ":-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=128[p];[b][p]paletteuse=dither=bayer";
-  const std::pair<std::string, std::string> films[2] = {{"animation.mp4", size}, {"animation.gif", gif}};
-  IgnoreSigpipe quiet;
-  Encoder enc[2];
-  for (int k = 0; k < 2; ++k)
-    enc[k] = startEncoder(exe, first.width, first.height, style.fps, films[k].second,
-                          (fs::path(dir) / films[k].first).string(), log);
-  constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
-  for (size_t b = 0; b < frames.size(); b += kBatch) {
-    std::vector<MapImage> batch(std::min(kBatch, frames.size() - b));
-    tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
-    for (const MapImage& m : batch)
-      for (Encoder& e : enc)
-        if (m.width == first.width && m.height == first.height)
-          feed(e, m.pixels.data(), m.pixels.size() * sizeof(uint32_t));
-  }
-  bool ok[2];
-  for (int k = 0; k < 2; ++k) ok[k] = finish(enc[k]);
-  for (int k = 0; k < 2; ++k) {
-    if (!ok[k]) {
-      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); `talus animate` "
-                  "makes it again from animation/rasters/";
-      return r;
-    }
-    r.files.push_back(films[k].first);
-  }
-  fs::remove(log);
-  fs::remove_all(fs::path(dir) / "animation" / "png"); // drawn by an earlier run without ffmpeg
+  encodeFilms(exe, dir, style, frames.size(), draw, r);
   return r;
 }
 
