@@ -1,5 +1,6 @@
 #include "hazard/ensemble_report.h"
 
+#include "io/common/json_text.h"
 #include "io/output/report_page.h"
 
 #include <cmath>
@@ -25,9 +26,7 @@ std::string jsonValue(const std::string& field) {
   char* end = nullptr;
   const double v = std::strtod(field.c_str(), &end);
   if (end && *end == '\0' && std::isfinite(v)) return field;
-  std::string q = "\"";
-  for (char c : field) q += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
-  return q + "\"";
+  return jsonString(field);
 }
 
 } // namespace
@@ -43,7 +42,7 @@ std::string csvAsJson(const std::string& path) {
     const std::vector<std::string> f = split(line);
     out += out.size() > 1 ? ",\n{" : "\n{";
     for (size_t i = 0; i < header.size(); ++i)
-      out += (i ? ", " : "") + jsonValue(header[i]) + ": " + (i < f.size() ? jsonValue(f[i]) : "null");
+      out += (i ? ", " : "") + jsonString(header[i]) + ": " + (i < f.size() ? jsonValue(f[i]) : "null");
     out += "}";
   }
   return out + "]";
@@ -53,8 +52,8 @@ void writeEnsembleReport(const std::string& dir, const std::vector<std::string>&
   namespace fs = std::filesystem;
   const fs::path root(dir);
   std::string fileList;
-  for (const auto& f : files) fileList += (fileList.empty() ? "" : ", ") + jsonValue(f);
-  const std::string summary = "{\"kind\": \"ensemble\", \"scene\": " + jsonValue(root.filename().string()) +
+  for (const auto& f : files) fileList += (fileList.empty() ? "" : ", ") + jsonString(f);
+  const std::string summary = "{\"kind\": \"ensemble\", \"scene\": " + jsonString(root.filename().string()) +
                               ",\n\"members\": " + csvAsJson((root / "members.csv").string()) +
                               ",\n\"morris\": " + csvAsJson((root / "morris.csv").string()) +
                               ",\n\"files\": [" + fileList + "]}";

@@ -32,7 +32,7 @@ const char* statusName(RunStatus s) {
 class PySimulation {
 public:
   PySimulation(Scene& scene, const std::string& out, int threads, bool resume) {
-    SceneSetup& s = scene.get();
+    scene.get(); // a spent scene raises ValueError here
     RunOptions o;
     o.outDir = out;
     o.threads = threads;
@@ -58,17 +58,22 @@ public:
     return more;
   }
 
-  /// Steps to time t without returning to Python in between; Ctrl-C is looked at after each step
-  /// and ends the run with a checkpoint (then KeyboardInterrupt).
+  /// Steps to time t without returning to Python in between (Run::advanceTo, the GIL released);
+  /// Ctrl-C is looked at after each step and ends the run with a checkpoint (then
+  /// KeyboardInterrupt).
   bool advanceTo(double t) {
-    while (!run_->ended() && run_->simulation().time() < std::min(t, run_->endTime())) {
-      step();
-      if (PyErr_CheckSignals() != 0) {
-        run_->interrupt(SIGINT);
-        throw py::error_already_set();
-      }
+    bool interrupted = false;
+    {
+      py::gil_scoped_release nogil;
+      run_->advanceTo(t, [&] {
+        {
+          py::gil_scoped_acquire gil; // Python only flagged the signal; it raises here
+          interrupted = PyErr_CheckSignals() != 0;
+        }
+        if (interrupted) run_->interrupt(SIGINT);
+      });
     }
-    if (!run_->ended() && run_->simulation().time() >= run_->endTime()) step();
+    if (interrupted) throw py::error_already_set();
     raiseFailure();
     return !run_->ended();
   }

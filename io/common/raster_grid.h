@@ -2,6 +2,7 @@
 // (io/dem_raster) and map output (hazard GeoTIFFs, PNG quick-looks).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -29,6 +30,21 @@ struct RasterGrid {
     return true;
   }
 };
+
+/// The cells of `g` that the world rectangle [xmin, xmax] x [ymin, ymax] touches, as a grid of
+/// their own (same cells, origin shifted); c0, r0 receive its first column and row in `g`. Its
+/// nx or ny is 0 when the rectangle misses `g`.
+inline RasterGrid windowOf(const RasterGrid& g, double xmin, double ymin, double xmax, double ymax, int& c0, int& r0) {
+  const double cs = g.cellSize;
+  auto clampTo = [](double v, int hi) { return v < 0 ? 0 : v > hi ? hi : int(v); };
+  c0 = clampTo(std::floor((xmin - g.originX) / cs), g.nx);
+  r0 = clampTo(std::floor((g.originY - ymax) / cs), g.ny);
+  const int c1 = clampTo(std::ceil((xmax - g.originX) / cs), g.nx), r1 = clampTo(std::ceil((g.originY - ymin) / cs), g.ny);
+  RasterGrid w = g;
+  w.nx = c1 > c0 ? c1 - c0 : 0, w.ny = r1 > r0 ? r1 - r0 : 0;
+  w.originX = g.originX + c0 * cs, w.originY = g.originY - r0 * cs;
+  return w;
+}
 
 /// Elevations on a RasterGrid, row-major as above; NaN marks no-data.
 struct DemRaster {

@@ -65,15 +65,10 @@ Frame readFrame(const std::string& path) {
 /// The part of a frame inside the world window (whole cells), or the frame itself.
 Frame crop(const Frame& f, const std::optional<std::array<double, 4>>& w) {
   if (!w) return f;
-  const double cs = f.grid.cellSize;
-  const int c0 = std::clamp(int(std::floor(((*w)[0] - f.grid.originX) / cs)), 0, f.grid.nx);
-  const int c1 = std::clamp(int(std::ceil(((*w)[2] - f.grid.originX) / cs)), 0, f.grid.nx);
-  const int r0 = std::clamp(int(std::floor((f.grid.originY - (*w)[3]) / cs)), 0, f.grid.ny);
-  const int r1 = std::clamp(int(std::ceil((f.grid.originY - (*w)[1]) / cs)), 0, f.grid.ny);
-  if (c1 <= c0 || r1 <= r0) throw InputError("--window", "the window does not overlap the frames");
+  int c0 = 0, r0 = 0;
   Frame out = f;
-  out.grid.nx = c1 - c0, out.grid.ny = r1 - r0;
-  out.grid.originX = f.grid.originX + c0 * cs, out.grid.originY = f.grid.originY - r0 * cs;
+  out.grid = windowOf(f.grid, (*w)[0], (*w)[1], (*w)[2], (*w)[3], c0, r0);
+  if (out.grid.size() == 0) throw InputError("--window", "the window does not overlap the frames");
   out.values.assign(out.grid.size(), 0.f);
   for (int r = 0; r < out.grid.ny; ++r)
     for (int c = 0; c < out.grid.nx; ++c) out.values[out.grid.index(c, r)] = f.values[f.grid.index(c0 + c, r0 + r)];

@@ -3,6 +3,7 @@
 #include "io/output/hazard_maps_impl.h"
 
 #include "io/common/input_error.h"
+#include "io/common/json_text.h"
 #include "io/output/animation.h"
 
 #include "io/common/geotiff_writer.h"
@@ -131,9 +132,7 @@ void HazardMaps::makeFilm() {
 
 std::vector<std::pair<std::string, std::string>> HazardMaps::summary() const {
   if (animationOutcome_.empty()) return {};
-  std::string quoted = "\"";
-  for (char c : animationOutcome_) quoted += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
-  return {{"animation", quoted + "\""}};
+  return {{"animation", jsonString(animationOutcome_)}};
 }
 
 std::vector<float> HazardMaps::raster(Quantity q, int layer) const {

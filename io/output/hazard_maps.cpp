@@ -64,16 +64,8 @@ void HazardMaps::onStart(const Simulation& sim) {
   // Window: the cells of the grid the domain's xy extent touches.
   const double cs = grid_.cellSize;
   const Vec3d lo = st.domain.min + st.origin, hi = st.domain.max + st.origin;
-  const int c0 = std::clamp(int(std::floor((lo.x() - grid_.originX) / cs)), 0, grid_.nx);
-  const int c1 = std::clamp(int(std::ceil((hi.x() - grid_.originX) / cs)), 0, grid_.nx);
-  const int r0 = std::clamp(int(std::floor((grid_.originY - hi.y()) / cs)), 0, grid_.ny);
-  const int r1 = std::clamp(int(std::ceil((grid_.originY - lo.y()) / cs)), 0, grid_.ny);
-  if (c1 <= c0 || r1 <= r0) throw std::runtime_error("hazard maps: the domain does not overlap the map grid");
-  m.c0 = c0, m.r0 = r0;
-  m.window = grid_;
-  m.window.nx = c1 - c0, m.window.ny = r1 - r0;
-  m.window.originX = grid_.originX + c0 * cs;
-  m.window.originY = grid_.originY - r0 * cs;
+  m.window = windowOf(grid_, lo.x(), lo.y(), hi.x(), hi.y(), m.c0, m.r0);
+  if (m.window.size() == 0) throw std::runtime_error("hazard maps: the domain does not overlap the map grid");
   m.cells = m.window.size();
   m.a = 1 / cs;
   m.bx = (st.origin.x() - m.window.originX) / cs - 0.5;
@@ -95,7 +87,7 @@ void HazardMaps::onStart(const Simulation& sim) {
     const auto& z = dem_->height;
     for (int r = 0; r < m.window.ny; ++r)
       for (int c = 0; c < m.window.nx; ++c) {
-        const int gc = c0 + c, gr = r0 + r;
+        const int gc = m.c0 + c, gr = m.r0 + r;
         auto at = [&](int cc, int rr) -> double {
           if (cc < 0 || rr < 0 || cc >= grid_.nx || rr >= grid_.ny) return NAN;
           return z[grid_.index(cc, rr)];

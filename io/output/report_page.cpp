@@ -1,6 +1,7 @@
 #include "io/output/report_page.h"
 
 #include "io/common/atomic_file.h"
+#include "io/common/json_text.h"
 #include "io/common/write_error.h"
 
 #include <filesystem>
@@ -67,7 +68,7 @@ void writeReportPage(const std::string& dir, const std::string& summaryJson, con
   for (const auto& f : files) {
     if (!shown(f, haveMp4) || !fs::exists(root / f)) continue;
     if (media.size() > 1) media += ",\n";
-    media += "\"" + f + "\": \"data:" + mimeOf(f) + ";base64," + base64(readBytes(root / f)) + "\"";
+    media += jsonString(f) + ": \"data:" + mimeOf(f) + ";base64," + base64(readBytes(root / f)) + "\"";
   }
   media += "}";
   std::string page = reportPageTemplate();

@@ -28,16 +28,8 @@ void WaterSurfaceMap::onStart(const Simulation& sim) {
   if (water_.empty()) return;
   // The window: the cells of the grid the domain's xy extent touches (as the hazard maps').
   const auto& st = sim.settings();
-  const double cs = grid_.cellSize;
   const Vec3d lo = st.domain.min + st.origin, hi = st.domain.max + st.origin;
-  c0_ = std::clamp(int(std::floor((lo.x() - grid_.originX) / cs)), 0, grid_.nx);
-  r0_ = std::clamp(int(std::floor((grid_.originY - hi.y()) / cs)), 0, grid_.ny);
-  const int c1 = std::clamp(int(std::ceil((hi.x() - grid_.originX) / cs)), 0, grid_.nx);
-  const int r1 = std::clamp(int(std::ceil((grid_.originY - lo.y()) / cs)), 0, grid_.ny);
-  window_ = grid_;
-  window_.nx = std::max(0, c1 - c0_), window_.ny = std::max(0, r1 - r0_);
-  window_.originX = grid_.originX + c0_ * cs;
-  window_.originY = grid_.originY - r0_ * cs;
+  window_ = windowOf(grid_, lo.x(), lo.y(), hi.x(), hi.y(), c0_, r0_);
   originZ_ = st.origin.z();
   volume_.assign(window_.size(), 0.f);
   bottom_.assign(window_.size(), std::numeric_limits<float>::infinity());

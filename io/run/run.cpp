@@ -14,8 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <tbb/global_control.h>
@@ -241,11 +239,8 @@ void Run::finish() {
   if (s.ranks.active()) s.info.ranks = rankFigures(*sim_);
   record();
   s.ranks.onRoot([&] {
-    writeSummaryJson(s.summaryFile, *s.view, s.info);
-    if (s.output.report) {
-      std::ifstream in(s.summaryFile, std::ios::binary);
-      writeReportPage(res_.outDir, std::string(std::istreambuf_iterator<char>(in), {}), res_.files);
-    }
+    const std::string summary = writeSummaryJson(s.summaryFile, *s.view, s.info);
+    if (s.output.report) writeReportPage(res_.outDir, summary, res_.files);
   });
   if (s.output.report) res_.files.push_back("report.html");
   ended_ = true;

@@ -9,24 +9,6 @@
 
 namespace talus {
 
-std::string jsonString(const std::string& s) {
-  std::ostringstream o;
-  o << '"';
-  for (char c : s) {
-    switch (c) {
-    case '"': o << "\\\""; break;
-    case '\\': o << "\\\\"; break;
-    case '\n': o << "\\n"; break;
-    case '\t': o << "\\t"; break;
-    default:
-      if (static_cast<unsigned char>(c) < 0x20) o << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
-      else o << c;
-    }
-  }
-  o << '"';
-  return o.str();
-}
-
 namespace {
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";
@@ -37,7 +19,7 @@ std::string num(double v) {
 std::string vec(const Vec3d& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; }
 } // namespace
 
-void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info) {
+std::string writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info) {
   std::ostringstream j;
   const double pss = info.wallSeconds > 0 ? double(sim.particleSteps()) / info.wallSeconds : 0;
   j << "{\n";
@@ -108,9 +90,9 @@ void writeSummaryJson(const std::string& path, const Simulation& sim, const RunI
   for (const OutputReport& o : info.outputs)
     for (const auto& [key, value] : o.summary) j << ",\n  " << jsonString(key) << ": " << value;
   j << "\n}\n";
-  writeAtomically(path, [&](const std::string& tmp) {
-    writeFileBytes(tmp, j.str());
-  });
+  const std::string text = j.str();
+  writeAtomically(path, [&](const std::string& tmp) { writeFileBytes(tmp, text); });
+  return text;
 }
 
 } // namespace talus

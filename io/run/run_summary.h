@@ -2,6 +2,7 @@
 #pragma once
 
 #include "engine/simulation.h"
+#include "io/common/json_text.h"
 #include "io/output/output_set.h"
 
 #include <string>
@@ -28,9 +29,8 @@ struct RunInfo {
   std::vector<RankFigures> ranks;  ///< under mpirun, per rank (empty for one process)
 };
 
-void writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);
+/// Writes summary.json and returns its text (the report page embeds it).
+std::string writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info);
 
-/// JSON string literal with escapes.
-std::string jsonString(const std::string& s);
 
 } // namespace talus
