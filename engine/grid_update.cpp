@@ -1,5 +1,7 @@
 #include "engine/grid_update.h"
 
+#include <algorithm>
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -43,7 +45,7 @@ void applyLaws(const ContactLaw& own, const std::vector<MaterialLaw>& laws, cons
 /// from the material, N s) and its moment about `ref`.
 void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double dx, const ContactStep& step,
                    const Vec3d& ref, const FlowColumns::BlockLines* lines, const std::vector<MaterialLaw>& laws,
-                   const float* extra, int channels, Vec4* nodes, ContactBatch& batch, double* acc) {
+                   const float* extra, int channels, Vec4* nodes, ContactBatch& batch, double* acc, float* work) {
   col.gather(b, c, dx, nodes, batch);
   if (batch.count == 0 && batch.held == 0) return;
   const bool moving = col.moves();
@@ -56,8 +58,18 @@ void applyCollider(const Collider& col, uint32_t b, const BlockCoord& c, double 
     cn.v = moving ? Vec3(nd.tail<3>() - batch.velocity[i]) : Vec3(nd.tail<3>());
     if (thickness) FlowColumns::at(*lines, batch.node[i], cn.n, Real(dx), cn.h, cn.rho);
   }
+  // Erosion's basal work: the tangential impulse the law removed times the sliding speed it left.
+  Real slidBefore[kBlockNodes];
+  auto tangentialSpeed = [&](int i) { const ContactNode& cn = batch.contact[i]; return (cn.v - cn.v.dot(cn.n) * cn.n).norm(); };
+  if (work)
+    for (int i = 0; i < batch.count; ++i) slidBefore[i] = tangentialSpeed(i);
   if (laws.empty()) col.law().apply(batch.contact, batch.count, step);
   else applyLaws(col.law(), laws, extra, channels, nodes, batch, step);
+  if (work)
+    for (int i = 0; i < batch.count; ++i) {
+      const Real after = tangentialSpeed(i);
+      work[batch.node[i]] = std::max(Real(0), batch.contact[i].mass * (slidBefore[i] - after) * after);
+    }
   Vec3d force = Vec3d::Zero(), moment = Vec3d::Zero();
   auto settle = [&](int n, const Vec3& vNew) {
     Vec4& nd = nodes[n];
@@ -113,7 +125,8 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
       for (size_t k = 0; k < K; ++k)
         applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr,
                       laws, laws.empty() ? nullptr : grid.blockExtra(uint32_t(b)),
-                      grid.extraChannels, nodes, batch, &perBlock[(b * K + k) * 6]);
+                      grid.extraChannels, nodes, batch, &perBlock[(b * K + k) * 6],
+                      k == 0 && prm.basalWork ? prm.basalWork + b * kBlockNodes : nullptr);
     }
   });
 

@@ -26,6 +26,9 @@ struct GridUpdateParams {
   std::vector<MaterialLaw> const* materialLaws = nullptr; ///< null or empty: colliders' laws only
   /// Per active block, whether its loads count here (MPI ranks: engine/halo_exchange.h); null: all.
   std::vector<uint8_t> const* counted = nullptr;
+  /// Erodible covers (engine/erodible_bed.h): per node of every block, the basal work (J) the
+  /// first collider's law did this step, |tangential impulse| x sliding speed after it; null: none.
+  float* basalWork = nullptr;
 };
 
 /// After this, node records hold (mass, velocity). Colliders act in list order on each node.

@@ -41,6 +41,14 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
     }
   if (settings_.fbar && periodic_.any())
     throw std::invalid_argument("[simulation] fbar does not work with periodic axes yet");
+  if (!settings_.covers.empty()) {
+    if (periodic_.any()) throw std::invalid_argument("erodible covers do not work with periodic axes yet");
+    for (const ErodibleCover& c : settings_.covers)
+      if (c.group < 0 || size_t(c.group) >= groups_.size())
+        throw std::invalid_argument("erodible cover '" + c.name + "' names no material group");
+    bed_ = std::make_unique<ErodibleBed>(std::move(settings_.covers), settings_.terrain, settings_.dx);
+    settings_.covers.clear();
+  }
   int maxIndex = 0;
   for (auto* g : groupPtrs_) maxIndex = std::max(maxIndex, g->index() + 1);
   massRemoved_.assign(size_t(maxIndex), 0.0);
@@ -168,8 +176,10 @@ double Simulation::step(double dtCap) {
       if (ranks_) buildColumnsOnRanks();
       else columns_.build(grid_, 0);
     }
+    if (bed_) bed_->prepare(grid_.blockCount()), prm.basalWork = bed_->basalWork().data();
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
     if (periodic_.any()) periodic_.unfold(grid_);
+    if (bed_) bed_->erode(grid_, dt); // entrainment: the eroded mass slows the nodes it joins
   }
   if (ranks_) {
     ScopedTimer t(times_.halo);
@@ -194,6 +204,7 @@ double Simulation::step(double dtCap) {
   ++steps_;
   maxSpeed_ = stats.maxSpeed;
   for (auto* g : groupPtrs_) g->afterStep();
+  if (bed_) bed_->release(groupPtrs_); // pools of eroded mass become particles
   if (ranks_) reduceGroupMinima();
   checkFinite(stats.nonFinite);
   {
@@ -396,6 +407,7 @@ void Simulation::save(StateArchive& a) const {
     a.put(p + "id", id.data(), id.size());
     groupPtrs_[i]->save(a, p);
   }
+  if (bed_) bed_->save(a);
 }
 
 void Simulation::load(const StateArchive& a) {
@@ -419,6 +431,7 @@ void Simulation::load(const StateArchive& a) {
   maxSpeed_ = a.getValue<double>("max_speed");
   initialMass_ = a.getValue<double>("initial_mass");
   a.getVector("mass_removed", massRemoved_);
+  if (bed_) bed_->load(a);
   if (massRemoved_.size() != groupPtrs_.size()) throw std::runtime_error("mass ledger does not fit the materials");
   // A run only ever holds particles inside the domain (culling keeps them there) with positive
   // mass; binning a position far outside would overflow the block coordinates.

@@ -4,6 +4,7 @@
 #include "engine/collider.h"
 #include "engine/flow_thickness.h"
 #include "engine/domain_decomposition.h"
+#include "engine/erodible_bed.h"
 #include "engine/grid_update.h"
 #include "engine/halo_exchange.h"
 #include "engine/periodic.h"
@@ -80,6 +81,9 @@ struct SimulationSettings {
   std::shared_ptr<const ParameterField> terrainParameters;
   std::vector<StructureSpec> structures;
   std::vector<PanelSpec> panels;    ///< on closed, non-periodic faces
+  /// Erodible covers thinner than a cell, as fields on the terrain (engine/erodible_bed.h); the
+  /// Simulation moves them into bed(). One process, no periodic axes.
+  std::vector<ErodibleCover> covers;
   /// Periodic axes (the domain's extent along them a multiple of 8 dx; no faces there).
   std::array<bool, 3> periodic{false, false, false};
 };
@@ -155,6 +159,8 @@ public:
   const std::vector<std::unique_ptr<Collider>>& colliders() const { return colliders_; }
   /// With ranks: rank 0 holds the totals (one process's, bit for bit), other ranks partial sums.
   const std::vector<ColliderLoad>& colliderLoads() const { return loads_; }
+  /// The erodible covers on the terrain, or null when the scene has none.
+  const ErodibleBed* bed() const { return bed_.get(); }
 
   /// Per material group (in groups() order): mass, kinetic energy and gravitational potential
   /// energy -m g.x about the local origin, summed in fixed chunks (the same at any thread count).
@@ -223,6 +229,7 @@ private:
   PhaseTimes times_;
   std::unique_ptr<DomainDecomposition> ranks_;
   HaloExchange halo_;
+  std::unique_ptr<ErodibleBed> bed_;
 };
 
 } // namespace talus

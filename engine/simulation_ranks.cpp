@@ -69,6 +69,9 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
                             const std::vector<std::vector<uint64_t>>* seedIndex) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
   if (settings_.fbar) throw std::invalid_argument("[simulation] fbar does not run on several ranks yet (run without mpirun)");
+  if (bed_)
+    throw std::invalid_argument("erodible covers thinner than their field_below do not run on several ranks yet (run "
+                                "without mpirun, or set field_below = 0 on the body for a cover of particles)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
   if (!seedIndex) {
     // Every rank holds every particle here: the same binning everywhere gives the same ranges.

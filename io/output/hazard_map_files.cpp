@@ -34,6 +34,39 @@ const char* HazardMaps::unit(Quantity q) {
   return s[q];
 }
 
+namespace {
+
+/// Whether group g is the material of a cover made a field (engine/erodible_bed.h).
+bool coverGroup(const Simulation& sim, int g) {
+  if (!sim.bed()) return false;
+  for (const ErodibleCover& c : sim.bed()->covers())
+    if (c.group == g) return true;
+  return false;
+}
+
+} // namespace
+
+/// Erosion of the covers made fields: each map cell reads the node column nearest its centre,
+/// so a column's depth covers its dx x dx plan area (a map finer than dx is not speckled).
+void HazardMaps::addBedErosion(Impl& m, const Simulation& sim) {
+  const ErodibleBed& bed = *sim.bed();
+  if (m.erosion.empty()) m.erosion.assign(size_t(m.layers), std::vector<float>(m.cells, 0.f));
+  const double dx = sim.settings().dx;
+  for (size_t c = 0; c < m.cells; ++c) {
+    const int col = int(c % size_t(m.window.nx)), row = int(c / size_t(m.window.nx));
+    const double x = m.window.cellCentreX(col) - sim.settings().origin.x();
+    const double y = m.window.cellCentreY(row) - sim.settings().origin.y();
+    const int32_t i = int32_t(std::lround(x / dx)), j = int32_t(std::lround(y / dx));
+    for (size_t k = 0; k < bed.covers().size(); ++k) {
+      const int g = bed.covers()[k].group;
+      const float depth = float(bed.erodedMass(i, j, k) / (sim.groups()[size_t(g)]->density() * dx * dx));
+      if (!(depth > 0)) continue;
+      m.erosion[0][c] += depth;
+      if (m.layers > 1) m.erosion[size_t(1 + g)][c] += depth;
+    }
+  }
+}
+
 void HazardMaps::onFinish(const Simulation& sim, bool completed) {
   Impl& m = *impl_;
   m.endTime = sim.time();
@@ -47,6 +80,7 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
         for (size_t c = 0; c < m.cells; ++c)
           m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
     }
+    if (sim.bed()) addBedErosion(m, sim);
   }
 
   namespace fs = std::filesystem;
@@ -66,7 +100,8 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
   char span[64];
   std::snprintf(span, sizeof span, "t = 0 - %.4g s", m.endTime);
   for (int l = 0; l < m.layers; ++l) {
-    const bool anyErodible = l == 0 ? !settings_.erodible.empty() : m.erodibleGroup[size_t(l - 1)] != 0;
+    const bool anyErodible = l == 0 ? !settings_.erodible.empty() || sim.bed()
+                                    : m.erodibleGroup[size_t(l - 1)] != 0 || coverGroup(sim, l - 1);
     const std::string dir = l == 0 ? "maps" : "maps/" + safeName(m.layerMaterial[size_t(l)]);
     fs::create_directories(fs::path(outDir_) / dir);
     for (int qi = 0; qi < kQuantities; ++qi) {

@@ -70,6 +70,7 @@ private:
   void makeFilm();
   std::string animationOutcome_;
   struct Impl;
+  static void addBedErosion(Impl& m, const Simulation& sim);
   std::unique_ptr<Impl> impl_;
   std::string outDir_;
   RasterGrid grid_;

@@ -30,6 +30,9 @@ public:
   void onStart(const Simulation& sim) override {
     names_.clear();
     for (const auto* g : sim.groups()) names_.push_back(safeName(g->name()));
+    covers_.clear();
+    if (sim.bed())
+      for (const auto& c : sim.bed()->covers()) covers_.push_back(safeName(c.name));
     first_ = true;
   }
   std::vector<std::string> header() const override {
@@ -40,6 +43,8 @@ public:
     for (const auto& n : names_) h.push_back("mass_kg_" + n);
     h.push_back("mass_removed_kg");
     h.push_back("max_speed_m_s");
+    // Covers made fields (engine/erodible_bed.h): the mass the flow has taken from each.
+    for (const auto& n : covers_) h.push_back("entrained_mass_kg_" + n);
     return h;
   }
   void sample(const Simulation& sim, double, std::vector<double>& row) override {
@@ -52,13 +57,14 @@ public:
     for (const auto& s : sums) row.push_back(s.mass);
     row.push_back(sim.totalMassRemoved());
     row.push_back(sim.maxSpeed());
+    for (size_t k = 0; k < covers_.size(); ++k) row.push_back(sim.bed()->entrainedMass(k));
   }
 
 private:
   void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "potential0", potential0_); }
   void load(const StateArchive& a, const std::string& prefix) override { potential0_ = a.getValue<double>(prefix + "potential0"); }
 
-  std::vector<std::string> names_;
+  std::vector<std::string> names_, covers_;
   double potential0_ = 0; ///< potential energy at the first row (-m g.x, local frame)
   bool first_ = true;
 };

@@ -50,6 +50,15 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
   j << "  \"mass_initial\": " << num(sim.initialMass()) << ",\n";
   j << "  \"mass_final\": " << num(sim.totalMass()) << ",\n";
   j << "  \"mass_removed\": " << num(sim.totalMassRemoved()) << ",\n";
+  if (const ErodibleBed* bed = sim.bed()) { // covers made fields: their mass is not in mass_initial
+    j << "  \"erodible_fields\": [";
+    for (size_t k = 0; k < bed->covers().size(); ++k)
+      j << (k ? ", " : "") << "{\"name\": " << jsonString(bed->covers()[k].name) << ", \"material\": "
+        << jsonString(sim.groups()[size_t(bed->covers()[k].group)]->name()) << ", \"mass_initial\": "
+        << num(bed->initialMass(k)) << ", \"mass_entrained\": " << num(bed->entrainedMass(k))
+        << ", \"mass_pooled\": " << num(bed->pooledMass(k)) << "}";
+    j << "],\n";
+  }
   j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
   j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";
   j << "  \"notes\": [";

@@ -113,8 +113,8 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
     av->fail("", rel->path + " has no thickness attribute: give release_thickness (m, AvaFrame's relTh)");
   const std::string entMaterial = av->has("entrainment_material") ? material(*av, "entrainment_material", names, true) : "";
   double entTh = av->has("entrainment_thickness") ? av->positive("entrainment_thickness") : NAN;
-  if (av->has("entrainment_thickness") && entMaterial.empty())
-    av->fail("entrainment_thickness", "needs entrainment_material (the material of the ENT/ covers)");
+  for (const char* k : {"entrainment_thickness", "erosion_energy"})
+    if (av->has(k) && entMaterial.empty()) av->fail(k, "needs entrainment_material (the material of the ENT/ covers)");
   if (!entMaterial.empty() && !folder.entrainment)
     av->fail("entrainment_material", folder.dir + "/Inputs/ENT: no entrainment shapefile");
 
@@ -138,7 +138,10 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
       entTh = 0.3;
       notes.push_back(folder.entrainment->path + ": no thickness attribute, AvaFrame's default 0.3 m used");
     }
-    add(areaBody(*folder.entrainment, "ENT", "layer", entMaterial, entTh));
+    auto ent = areaBody(*folder.entrainment, "ENT", "layer", entMaterial, entTh);
+    // AvaFrame's entEroEnergy; a cover under a cell thick erodes as com1DFA's (io/scene/erodible_cover_reader.h).
+    if (av->has("erosion_energy")) ent->set("erosion_energy", number(av->positive("erosion_energy")));
+    add(ent);
   } else if (folder.entrainment) {
     notes.push_back(folder.entrainment->path + ": entrainment areas not used (set avaframe.entrainment_material to "
                                                "add them as erodible covers)");

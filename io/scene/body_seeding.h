@@ -22,6 +22,7 @@ struct BodyReport {
   double geometricVolume = 0; ///< of the shape (before terrain clipping)
   double meanThickness = 0;   ///< terrain bodies: vertical, volume / plan area (m); 0 otherwise
   int particlesPerCell = 0;   ///< terrain bodies: the seeding's (the body's own or the scene's)
+  double fieldMass = 0;       ///< a cover made an erodible field (no particles): its mass (kg)
 };
 
 /// Below this many cells across its mean thickness a released body's peak flow heights lose

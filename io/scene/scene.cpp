@@ -3,6 +3,7 @@
 #include "engine/sdf_solids.h"
 #include "io/terrain/shape_reader.h"
 #include "io/scene/body_seeding.h"
+#include "io/scene/erodible_cover_reader.h"
 #include "io/common/resource_limits.h"
 #include "io/terrain/terrain_bodies.h"
 #include "io/terrain/terrain_loader.h"
@@ -193,6 +194,12 @@ MaterialGroup* findGroup(const ConfigTable& t, SceneSetup& s, std::string& name)
   t.fail("material", "no material named '" + name + "' (materials: " + list + ")");
 }
 
+int groupPosition(const SceneSetup& s, const MaterialGroup* group) {
+  for (size_t i = 0; i < s.groups.size(); ++i)
+    if (s.groups[i].get() == group) return int(i);
+  return -1;
+}
+
 /// The seeding of one body: the scene's, with the body's own particles_per_cell if it gives one
 /// (more, lighter particles for a thin release: docs/convergence.md, "Thin releases").
 SeedSpec bodySpec(const ConfigTable& t, SeedSpec spec) {
@@ -253,16 +260,26 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       std::string material;
       MaterialGroup* group = tb->kind() == TerrainBody::Kind::Fixed ? nullptr : findGroup(t, s, material);
       BodyReport rep;
+      std::optional<ErodibleCover> cover;
       try {
-        rep = seedTerrainBody(*tb, *bedField, bodySpec(t, terrainSpec), s.settings.origin, worldMin, worldMax, group,
-                              seeded);
+        if (group && s.settings.terrain)
+          cover = readErodibleCover(*tb, *bedField, s.settings.origin, s.settings.dx,
+                                    bodySpec(t, terrainSpec).particlesPerCell, *group, groupPosition(s, group), seeded, rep);
+        if (!cover)
+          rep = seedTerrainBody(*tb, *bedField, bodySpec(t, terrainSpec), s.settings.origin, worldMin, worldMax, group,
+                                seeded);
       } catch (const InputError& e) {
         if (e.located()) throw;
         t.fail("", e.what()); // a limit: about this body
       }
-      seeded.push_back(tb);
       rep.label = label;
-      if (std::string note = thinBodyNote(rep, s.settings.dx); !note.empty()) s.notes.push_back(note);
+      if (cover) { // a field under the flow, not particles: later bodies may overlap it
+        s.notes.push_back(erodibleCoverNote(*cover, rep, s.settings.dx));
+        s.settings.covers.push_back(std::move(*cover));
+      } else {
+        seeded.push_back(tb);
+        if (std::string note = thinBodyNote(rep, s.settings.dx); !note.empty()) s.notes.push_back(note);
+      }
       s.bodies.push_back(rep);
       continue;
     }

@@ -1,0 +1,110 @@
+// Erodible covers thinner than a cell, as a field on the terrain instead of particles.
+//
+// A snow or sediment cover of a few decimetres is a tenth of a cell at the resolutions real paths
+// run at: its particles would be flat slabs sliding on their own. Here a cover is a mass per node
+// column (i, j) of the grid (kg over the column's dx x dx plan area). Where the flow slides over
+// it, it erodes as AvaFrame's com1DFA erodes (docs/theoryCom1DFA, "Entrainment"): the erosion
+// rate per area is tau_b |u| / e_b, the basal shear power over the specific erosion energy e_b
+// (J/kg). A contact node's share of tau_b A dt is the tangential impulse its basal law removed
+// this step, so the node asks for (impulse x sliding speed) / e_b kilograms, and no plan area
+// enters.
+//
+// Mass and momentum are conserved exactly: the eroded mass dm leaves the column and the node,
+// of mass m, slows to v m / (m + dm), the momentum that accelerates the eroded mass from rest to
+// the flow's velocity. That mass and momentum wait in the column's pool until the pool reaches
+// one particle's mass (or the flow stops eroding there), then become a particle of the cover's
+// material in the cell the mass came from, on the ground, moving with the pool's velocity.
+#pragma once
+
+#include "engine/material_group.h"
+#include "engine/sdf.h"
+#include "engine/sparse_grid.h"
+#include "engine/state_archive.h"
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace talus {
+
+/// One cover as the scene gives it: its material and erosion law, and its mass per node column.
+struct ErodibleCover {
+  std::string name;        ///< the body's label (series columns, messages)
+  int group = 0;           ///< position in Simulation::groups() of the cover's material
+  double erosionEnergy = 5000; ///< e_b (J/kg): AvaFrame's entEroEnergy
+  double particleMass = 0; ///< kg: a pool at least this heavy becomes a particle
+  struct Column {
+    int32_t i = 0, j = 0; ///< node column: plan position (i dx, j dx) in the local frame
+    double mass = 0;      ///< kg over the column's dx x dx plan area
+  };
+  std::vector<Column> columns;
+};
+
+class ErodibleBed {
+public:
+  /// @param covers  eroded in list order where they overlap (the first is the top one)
+  /// @param ground  the terrain, to put new particles on it
+  /// @throws std::invalid_argument for a cover without columns, a non-positive erosion energy or
+  ///         particle mass, or a column of negative mass
+  ErodibleBed(std::vector<ErodibleCover> covers, std::shared_ptr<const Sdf> ground, double dx);
+
+  const std::vector<ErodibleCover>& covers() const { return covers_; }
+
+  /// Grid update scratch: per node of every active block, the basal work (J) of the ground's
+  /// law this step, |tangential impulse| x sliding speed. Sized and zeroed by prepare().
+  std::vector<float>& basalWork() { return work_; }
+  void prepare(size_t blocks) { work_.assign(blocks * kBlockNodes, 0.f); }
+
+  /// After the grid update: takes each column's eroded mass, slows its contact nodes so that
+  /// momentum is conserved, and adds mass and momentum to the columns' pools. Deterministic: the
+  /// nodes are visited in block order.
+  void erode(SparseGrid& grid, double dt);
+  /// After G2P: a pool becomes one particle of its cover's group (appended, model state
+  /// undeformed) when it holds a particle's mass, when its column is eroded to the ground, when
+  /// its column has eroded nothing for as long as the pool's mass takes to travel kWaitCells cells
+  /// (the flow has passed), or when it has waited kMaxWaits times that (a deposit creeping on,
+  /// eroding a little, releases a pool now and then rather than a small particle every step).
+  /// Returns the particles made.
+  static constexpr double kWaitCells = 4, kMaxWaits = 8;
+  size_t release(const std::vector<MaterialGroup*>& groups);
+
+  /// Per cover: mass given at the start, still on the ground, and waiting in pools (kg).
+  double initialMass(size_t cover) const;
+  double remainingMass(size_t cover) const;
+  double pooledMass(size_t cover) const;
+  Vec3d pooledMomentum(size_t cover) const;
+  /// Mass taken by the flow so far (initial - remaining), pooled or already particles.
+  double entrainedMass(size_t cover) const { return initialMass(cover) - remainingMass(cover); }
+  /// Mass (kg) the flow has taken from cover `cover` at node column (i, j); 0 where it has none.
+  double erodedMass(int32_t i, int32_t j, size_t cover) const;
+
+  /// Checkpointing: the columns' remaining mass and pools, bit for bit.
+  void save(StateArchive& a) const;
+  /// @throws std::runtime_error when the archive's bed does not fit this one
+  void load(const StateArchive& a);
+
+private:
+  /// One cover at one column, sorted by (column, cover).
+  struct Entry {
+    int32_t i, j, cover;
+    double initial, remaining;
+    double pool = 0;                     ///< eroded mass not yet a particle (kg)
+    Vec3d momentum = Vec3d::Zero();      ///< its momentum (kg m/s)
+    Vec3d moment = Vec3d::Zero();        ///< sum of dm x where it was eroded (kg m, local)
+    double age = 0;                      ///< time since the pool began to fill (s)
+    double idle = 0;                     ///< time since the column last eroded (s)
+  };
+  static uint64_t key(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
+
+  std::vector<ErodibleCover> covers_;
+  std::shared_ptr<const Sdf> ground_;
+  double dx_;
+  std::vector<Entry> entries_;
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> columns_; ///< key -> [first, end) entries
+  std::vector<float> work_;
+  std::vector<double> columnWork_; ///< scratch: per column (at its first entry), the work this step
+  std::vector<double> scratch_;    ///< scratch: per entry, the mass it gives per joule of its column's work
+};
+
+} // namespace talus
