@@ -221,36 +221,29 @@ TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   EXPECT_EQ(hv.at(X + 3.7, Y + 0.5), 0.f);
 }
 
+namespace {
+
+/// Rock blocks without gravity above a frictionless 30-degree plane in EPSG:2056, domain
+/// 4 x `width` m, maps on 0.25 m cells; `blocks` are [[bodies]] tables, `maps` more map keys.
+SceneSetup blocksOnAPlane(double width, const std::string& blocks, const std::string& maps) {
+  return loadSceneString("[simulation]\ndx = 0.1\nend_time = 0.02\ngravity = [0, 0, 0]\n[domain]\n"
+                         "min = [2600000, 1200000, 999]\nmax = [2600004, " + std::to_string(1200000 + width) +
+                             ", 1005]\n[terrain]\nplane = { point = [2600000, 1200000, 1000], normal = [-0.5, 0, "
+                             "0.8660254037844386] }\nboundary = \"slip\"\n[[materials]]\nname = \"rock\"\n"
+                             "model = \"elastic\"\ndensity = 2500\nyoungs_modulus = 1e6\n" + blocks +
+                             "[output]\ncrs = \"EPSG:2056\"\n[output.maps]\ncell_size = 0.25\nquicklook = false\n" + maps,
+                         "test.toml");
+}
+
+const char* kBlock = "[[bodies]]\nmaterial = \"rock\"\nshape = \"box\"\nmin = [2600001, 1200000.5, 1003.2]\n"
+                     "max = [2600003, 1200001.5, 1003.7]\n";
+
+} // namespace
+
 TEST(OutputMaps, WithoutDemTheGridCoversTheDomainAndTheSlopeComesFromTheTerrain) {
   const std::string dir = test::tempDir("maps_nodem");
   // A block resting (no gravity) above a 30-degree plane; maps on 0.25 m cells in EPSG:2056.
-  SceneSetup scene = loadSceneString(R"([simulation]
-dx = 0.1
-end_time = 0.02
-gravity = [0, 0, 0]
-[domain]
-min = [2600000, 1200000, 999]
-max = [2600004, 1200002, 1005]
-[terrain]
-plane = { point = [2600000, 1200000, 1000], normal = [-0.5, 0, 0.8660254037844386] }
-boundary = "slip"
-[[materials]]
-name = "rock"
-model = "elastic"
-density = 2500
-youngs_modulus = 1e6
-[[bodies]]
-material = "rock"
-shape = "box"
-min = [2600001, 1200000.5, 1003.2]
-max = [2600003, 1200001.5, 1003.7]
-[output]
-crs = "EPSG:2056"
-[output.maps]
-cell_size = 0.25
-quicklook = false
-)",
-                                     "test.toml");
+  SceneSetup scene = blocksOnAPlane(2, kBlock, "");
   RunOptions opt;
   opt.outDir = dir;
   opt.progress = false;
@@ -265,6 +258,24 @@ quicklook = false
   // the slope from the terrain SDF (bisection, then central differences) is 30 degrees.
   EXPECT_NEAR(hv.at(2600002.125, 1200001.125), 0.5, 1e-5);
   EXPECT_NEAR(hn.at(2600002.125, 1200001.125), 0.5 * std::cos(M_PI / 6), 1e-5);
+}
+
+TEST(OutputMaps, MinSpeedLeavesRestingMaterialOutOfTheFlowMaps) {
+  // Two blocks: one at rest, one gliding along the slope at 1 m/s. With min_speed = 0.5 m/s the
+  // resting one is no flow (flow height 0), the gliding one is its 0.5 m; both are in the
+  // deposit, which counts every particle.
+  const std::string dir = test::tempDir("maps_min_speed");
+  const std::string gliding = "[[bodies]]\nmaterial = \"rock\"\nshape = \"box\"\nmin = [2600001, 1200002.5, 1003.2]\n"
+                              "max = [2600003, 1200003.5, 1003.7]\nvelocity = [0, 1, 0]\n";
+  SceneSetup scene = blocksOnAPlane(4, kBlock + gliding, "min_speed = 0.5\n");
+  RunOptions opt;
+  opt.outDir = dir;
+  opt.progress = false;
+  ASSERT_TRUE(runScene(std::move(scene), opt).ok);
+  const Raster hv = readTif(dir + "/maps/max_flow_height_vertical.tif"), dep = readTif(dir + "/maps/deposit_thickness.tif");
+  EXPECT_EQ(hv.at(2600002.125, 1200001.125), 0.f);         // at rest
+  EXPECT_NEAR(hv.at(2600002.125, 1200003.125), 0.5, 1e-5); // gliding: the cell is inside it throughout
+  EXPECT_NEAR(dep.at(2600002.125, 1200001.125), 0.5, 1e-5);
 }
 
 TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {

@@ -124,7 +124,7 @@ bool HazardMaps::animationFrameDue(double time) const {
   return a.enabled && time + 1e-9 * a.interval >= impl_->animationNext * a.interval;
 }
 
-void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use) {
+void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed) {
   Impl& m = *this;
   const auto& groups = sim.groups();
   const int w = m.window.nx, h = m.window.ny;
@@ -148,7 +148,8 @@ void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_
       for (size_t p = ch * kChunk; p < std::min(P.size(), (ch + 1) * kChunk); ++p) {
         const auto [fx, fy] = cellOf(p);
         // First of the two rows the splat covers, plus one (0 .. h); floor via int as fy >= -1.
-        row[p] = fx >= -1 && fx < w && fy >= -1 && fy < h ? int32_t(fy + 1) : -1;
+        const bool moving = !(minSpeed > 0) || P.v[p].squaredNorm() >= minSpeed * minSpeed;
+        row[p] = moving && fx >= -1 && fx < w && fy >= -1 && fy < h ? int32_t(fy + 1) : -1;
         if (row[p] >= 0) ++cnt[size_t(row[p])];
       }
     });
@@ -252,7 +253,7 @@ void HazardMaps::accumulate(const Simulation& sim) {
   m.endTime = sim.time();
   ++accumulations_;
   const std::vector<uint8_t> all(sim.groups().size(), 1);
-  m.binSplats(sim, all);
+  m.binSplats(sim, all, float(settings_.minSpeed)); // moving material only, when min_speed is set
   const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
   const float minH = float(settings_.minHeight);
   const size_t n = m.cells;

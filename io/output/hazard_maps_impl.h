@@ -48,7 +48,8 @@ struct HazardMaps::Impl {
   /// The splats of the particles of the groups in `use`, sorted by the map row they start in
   /// (see accumulate). Stored in that order, not per particle: the sums then read them in
   /// sequence (a gather through a particle index missed the cache on most of them).
-  void binSplats(const Simulation& sim, const std::vector<uint8_t>& use);
+  /// Only particles at least `minSpeed` fast (m/s) are splatted when it is positive.
+  void binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed = 0);
   /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
   /// then calls fold(cell) for each cell touched and clears its sums.
   template <class Fold> void sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold);

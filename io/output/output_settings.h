@@ -76,6 +76,9 @@ struct MapSettings {
   bool perMaterial = false;  ///< also one set of maps per material
   bool quicklook = true;     ///< PNG next to every GeoTIFF
   double minHeight = 0;      ///< speed and pressure count only where flow height >= this (m)
+  /// Flow height, speed, pressure and the film count only particles at least this fast (m/s):
+  /// a resting snowpack or cover is then not reported as flow. 0 (AvaFrame's way): every particle.
+  double minSpeed = 0;
   double interval = 0;       ///< s between accumulations; 0 = every step
   std::vector<std::string> erodible; ///< materials whose lost thickness is erosion depth
   PeakFileSettings peakFiles;

@@ -82,6 +82,7 @@ void readMaps(const ConfigTable& out, const std::vector<std::string>& materialNa
   m.perMaterial = t->boolean("per_material", false);
   m.quicklook = t->boolean("quicklook", true);
   m.minHeight = t->positive("min_height", 0, true);
+  m.minSpeed = t->positive("min_speed", 0, true);
   m.interval = t->positive("interval", 0, true);
   m.erodible = readMaterialList(*t, "erodible", materialNames);
 }
