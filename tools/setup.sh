@@ -21,10 +21,11 @@ packages=(
   pybind11-dev python3-dev python3-numpy
   ffmpeg
 )
-# What only the tests use: pytest and the examples' h5py and Matplotlib (the Python module), and
-# Chromium, which loads report.html headless.
+# What only the tests use: pytest and the examples' h5py and Matplotlib (the Python module),
+# Chromium, which loads report.html headless, and Blender, which `talus render` drives (optional
+# for users: the command says how to install it).
 if [ "$mode" != demo ]; then
-  packages+=(python3-pytest python3-h5py python3-matplotlib chromium)
+  packages+=(python3-pytest python3-h5py python3-matplotlib chromium blender)
 fi
 
 missing=()

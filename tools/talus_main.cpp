@@ -10,6 +10,7 @@
 #include "io/config/toml_reader.h"
 #include "tools/analysis_commands.h"
 #include "tools/animate_command.h"
+#include "tools/render_command.h"
 #include "tools/benchmark.h"
 #include "tools/ensemble_command.h"
 #include "tools/work_precision.h"
@@ -175,6 +176,8 @@ int main(int argc, char** argv) {
   const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
   AnimateOptions animateOpt;
   auto* animateCmd = addAnimateCommand(app, animateOpt);
+  RenderCommandOptions renderOpt;
+  auto* renderCmd = addRenderCommand(app, renderOpt);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -192,6 +195,7 @@ int main(int argc, char** argv) {
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);
     if (*animateCmd) return runAnimateCommand(animateOpt);
+    if (*renderCmd) return runRenderCommand(renderOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;
     if (*defaults) {
       std::cout << defaultSceneText();

@@ -2,10 +2,11 @@
 
 #include "io/common/geotiff_writer.h"
 #include "io/common/input_error.h"
+#include "io/common/program_path.h"
+#include "io/common/raster_reader.h"
 #include "io/common/write_error.h"
 #include "io/output/map_quicklook.h"
 
-#include <gdal_priv.h>
 
 #include <algorithm>
 #include <cmath>
@@ -44,21 +45,11 @@ std::string frameName(const char* quantity, int index) {
 }
 
 Frame readFrame(const std::string& path) {
-  GDALAllRegister();
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
-  if (!ds) throw InputError(path, "cannot read this animation frame (GDAL cannot open it)");
+  FloatRaster r = readFloatRaster(path, "this animation frame");
   Frame f;
-  double gt[6];
-  ds->GetGeoTransform(gt);
-  f.grid.nx = ds->GetRasterXSize(), f.grid.ny = ds->GetRasterYSize();
-  f.grid.originX = gt[0], f.grid.originY = gt[3], f.grid.cellSize = gt[1];
-  f.values.resize(f.grid.size());
-  const CPLErr e = ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, f.grid.nx, f.grid.ny, f.values.data(), f.grid.nx,
-                                                   f.grid.ny, GDT_Float32, 0, 0);
-  const char* t = ds->GetMetadataItem("TALUS_TIME_S");
-  f.time = t ? std::atof(t) : 0;
-  GDALClose(ds);
-  if (e != CE_None) throw InputError(path, "cannot read this animation frame's values");
+  f.grid = r.grid;
+  f.values = std::move(r.values);
+  f.time = r.timeSeconds.empty() ? 0 : std::atof(r.timeSeconds.c_str());
   return f;
 }
 
@@ -90,19 +81,6 @@ std::vector<float> groundOn(const std::string& dir, const RasterGrid& grid) {
       }
     }
   return z;
-}
-
-/// `ffmpeg` on the PATH, or "".
-std::string findFfmpeg() {
-  const char* path = std::getenv("PATH");
-  std::string p = path ? path : "";
-  for (size_t a = 0; a <= p.size();) {
-    const size_t b = std::min(p.find(':', a), p.size());
-    const fs::path exe = fs::path(p.substr(a, b - a)) / "ffmpeg";
-    if (b > a && access(exe.c_str(), X_OK) == 0) return exe.string();
-    a = b + 1;
-  }
-  return "";
 }
 
 /// ffmpeg encoding one film from raw frames written to its standard input.
@@ -299,7 +277,7 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
   };
   AnimationResult r;
   r.frames = int(frames.size());
-  const std::string exe = findFfmpeg();
+  const std::string exe = findProgram("ffmpeg");
   if (exe.empty()) {
     // The pictures, for whoever encodes them another way (frames drawn side by side).
     const fs::path png = fs::path(dir) / "animation" / "png";

@@ -2,6 +2,7 @@
 #include "io/common/names.h"
 
 #include "io/common/atomic_file.h"
+#include "io/common/input_error.h"
 #include "io/output/h5_frame_writer.h"
 #include "io/output/node_scatter.h"
 
@@ -135,6 +136,39 @@ void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::s
   describe(*velocity, "velocity", "m/s", sim.time());
   grids.push_back(velocity);
   writeFile(path, grids, fileMetadata(sim, crsWkt));
+}
+
+VolumeFrameInfo readVolumeFrameInfo(const std::string& path) {
+  initOpenVdb();
+  VolumeFrameInfo info;
+  try {
+    openvdb::io::File file(path);
+    file.open(false);
+    const openvdb::MetaMap::Ptr meta = file.getMetadata();
+    const auto origin = meta->getMetadata<openvdb::Vec3DMetadata>("local_origin");
+    if (!origin || !file.hasGrid("density")) throw InputError(path, "not a Talus volume frame (no local_origin or density grid)");
+    info.localOrigin = Vec3d(origin->value().x(), origin->value().y(), origin->value().z());
+    if (const auto t = meta->getMetadata<openvdb::DoubleMetadata>("time")) info.time = t->value();
+    const openvdb::GridPtrVecPtr described = file.readAllGridMetadata(); // kept: the loop reads into it
+    for (const openvdb::GridBase::Ptr& g : *described) {
+      const std::string name = g->getName();
+      if (name.rfind("fraction_", 0) != 0) continue;
+      const auto rho = g->getMetadata<openvdb::DoubleMetadata>("reference_density");
+      info.materials.push_back({name.substr(9), rho ? rho->value() : 1000.0});
+    }
+    const openvdb::GridBase::Ptr density = file.readGrid("density");
+    file.close();
+    const openvdb::CoordBBox box = density->evalActiveVoxelBoundingBox();
+    if (!box.empty()) {
+      const openvdb::Vec3d a = density->indexToWorld(box.min()), b = density->indexToWorld(box.max());
+      info.empty = false;
+      info.lo = Vec3d(std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::min(a.z(), b.z()));
+      info.hi = Vec3d(std::max(a.x(), b.x()), std::max(a.y(), b.y()), std::max(a.z(), b.z()));
+    }
+  } catch (const openvdb::Exception& e) {
+    throw InputError(path, std::string("cannot read this volume frame: ") + e.what());
+  }
+  return info;
 }
 
 void writePointsVdb(const std::string& path, const Simulation& sim, const std::string& crsWkt) {

@@ -5,6 +5,10 @@
 
 #include "io/output/output_observer.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace talus {
 
 /// Float grids `density` (kg/m3) and `fraction_<material>` (volume fraction, material volume at
@@ -16,6 +20,19 @@ void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::s
 /// One PointDataGrid `points`: positions (world), attributes `v` (Vec3f, m/s), `mass` (float,
 /// kg) and `material` (int32, scene material index). Voxel size dx.
 void writePointsVdb(const std::string& path, const Simulation& sim, const std::string& crsWkt = "");
+
+/// What a volume frame (writeVolumeVdb's file) holds, read without its voxel data but for the
+/// density grid's active bounds.
+struct VolumeFrameInfo {
+  Vec3d localOrigin = Vec3d::Zero();      ///< file metadata `local_origin`
+  bool empty = true;                      ///< no active density voxel
+  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero(); ///< world bounds of the active density voxels
+  double time = 0;
+  /// Per fraction grid: the grid's name suffix (after `fraction_`) and reference density (kg/m3).
+  std::vector<std::pair<std::string, double>> materials;
+};
+/// Throws InputError naming the file when it cannot be read or is not a Talus volume frame.
+VolumeFrameInfo readVolumeFrameInfo(const std::string& path);
 
 class VdbVolumeWriter final : public OutputObserver {
 public:
