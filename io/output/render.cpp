@@ -97,7 +97,7 @@ std::string vec(const Vec3d& v) {
 /// the flow's bounding sphere to fill the picture's height (35 mm lens on a 36 mm sensor).
 Vec3d framingCamera(const Vec3d& target, double radius, double aspect) {
   const double halfV = std::atan(18.0 / 35.0 / aspect);
-  const double dist = 1.1 * radius / std::tan(halfV);
+  const double dist = 0.8 * radius / std::tan(halfV); // a flat flow fills less than its bounding sphere
   const double az = 200 * M_PI / 180, el = 30 * M_PI / 180; // bearing from the target (clockwise from north)
   return target + dist * Vec3d(std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el));
 }
