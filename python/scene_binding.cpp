@@ -92,6 +92,7 @@ py::list bodiesOf(const SceneSetup& s) {
     d["label"] = b.label, d["material"] = b.material, d["kind"] = b.kind, d["particles"] = b.particles;
     d["seeded_volume"] = b.seededVolume, d["geometric_volume"] = b.geometricVolume;
     d["mean_thickness"] = b.meanThickness;
+    d["field_mass"] = b.fieldMass; // kg: a cover made an erodible field (no particles), else 0
     out.append(d);
   }
   return out;

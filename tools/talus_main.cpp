@@ -101,8 +101,12 @@ int cmdCheck(const std::string& scene, const std::vector<std::string>& sets) {
   std::printf("%s: ok\n", s.file.c_str());
   for (const auto& n : s.notes) std::printf("  %s\n", n.c_str());
   for (const auto& b : s.bodies)
-    std::printf("  %-16s %-10s %-8s %9zu particles, seeded %.6g m3 / geometric %.6g m3\n", b.label.c_str(),
-                b.material.c_str(), b.kind.c_str(), b.particles, b.seededVolume, b.geometricVolume);
+    if (b.fieldMass > 0) // a cover made an erodible field (io/scene/erodible_cover_reader.h)
+      std::printf("  %-16s %-10s %-8s erodible field of %.6g kg, geometric %.6g m3\n", b.label.c_str(),
+                  b.material.c_str(), b.kind.c_str(), b.fieldMass, b.geometricVolume);
+    else
+      std::printf("  %-16s %-10s %-8s %9zu particles, seeded %.6g m3 / geometric %.6g m3\n", b.label.c_str(),
+                  b.material.c_str(), b.kind.c_str(), b.particles, b.seededVolume, b.geometricVolume);
   return 0;
 }
 

@@ -2,6 +2,7 @@
 
 #include "io/common/atomic_file.h"
 #include "io/output/collider_loads.h"
+#include "io/output/entrained_mass.h"
 #include "io/output/front_tracker.h"
 #include "io/output/probe_tracker.h"
 #include "io/output/section_discharge.h"
@@ -44,7 +45,7 @@ public:
     h.push_back("mass_removed_kg");
     h.push_back("max_speed_m_s");
     // Covers made fields (engine/erodible_bed.h): the mass the flow has taken from each.
-    for (const auto& n : covers_) h.push_back("entrained_mass_kg_" + n);
+    for (const auto& n : covers_) h.push_back("entrained_mass_kg_field_" + n);
     return h;
   }
   void sample(const Simulation& sim, double, std::vector<double>& row) override {
@@ -94,6 +95,7 @@ private:
 TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTime, double particleSpacing)
     : outDir_(std::move(outDir)), plots_(s.plots), interval_(s.seriesInterval > 0 ? s.seriesInterval : endTime / 1000) {
   columns_.push_back(std::make_unique<StateColumns>());
+  if (!s.maps.erodible.empty()) columns_.push_back(std::make_unique<EntrainedMassColumns>(s.maps.erodible));
   for (const auto& sec : s.sections) columns_.push_back(std::make_unique<SectionDischarge>(sec));
   for (const auto& p : s.paths) columns_.push_back(std::make_unique<FrontTracker>(p, particleSpacing));
   for (const auto& p : s.probes) columns_.push_back(std::make_unique<ProbeTracker>(p));

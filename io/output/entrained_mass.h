@@ -1,0 +1,36 @@
+// Entrained mass of erodible covers seeded as particles, over time (series.csv): for each
+// material in [output.maps] erodible, the mass that has left the places it lay at the start,
+// rho x sum over grid node columns of max(0, V0 - V), V the material's volume splatted onto the
+// node columns (bilinear, spacing dx) now and V0 at the start. The erosion_depth map's measure
+// (initial minus present thickness where positive) integrated, sampled through the run. Covers
+// made erodible fields have their own column (entrained_mass_kg_<cover>, engine/erodible_bed.h).
+#pragma once
+
+#include "io/output/series_columns.h"
+
+#include <cstdint>
+#include <unordered_map>
+
+namespace talus {
+
+class EntrainedMassColumns final : public SeriesColumns {
+public:
+  /// `materials`: the erodible materials' names; those absent from the scene are ignored.
+  explicit EntrainedMassColumns(std::vector<std::string> materials) : names_(std::move(materials)) {}
+  void onStart(const Simulation& sim) override;
+  bool any() const { return !groups_.empty(); }
+  std::vector<std::string> header() const override;
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+
+private:
+  using Columns = std::unordered_map<uint64_t, double>;
+  /// The volume of group g's particles per node column.
+  Columns volumes(const Simulation& sim, int g) const;
+
+  std::vector<std::string> names_;
+  std::vector<int> groups_;     ///< positions in sim.groups()
+  std::vector<std::string> groupNames_;
+  std::vector<Columns> start_;  ///< per erodible group: its volume per column at the start
+};
+
+} // namespace talus
