@@ -1,6 +1,8 @@
 // Hazard maps: GeoTIFFs on the DEM's grid and CRS that gdalinfo reads, with values checked
 // against a slab of known thickness moving at a known speed over a known slope.
 #include "io/terrain/dem_raster.h"
+#include "io/common/input_error.h"
+#include "io/common/raster_reader.h"
 #include "io/output/hazard_maps.h"
 #include "io/run/run_driver.h"
 #include "test_support.h"
@@ -9,7 +11,6 @@
 #include <cairo.h>
 #include <cmath>
 #include <cstdio>
-#include <gdal_priv.h>
 #include <cstring>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -48,22 +49,14 @@ struct Raster {
 };
 
 Raster readTif(const std::string& path) {
-  GDALAllRegister();
   Raster r;
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen(path.c_str(), GA_ReadOnly));
-  if (!ds) {
-    ADD_FAILURE() << "GDAL cannot open " << path;
-    return r;
+  try {
+    FloatRaster f = readFloatRaster(path, "a map");
+    r.grid = f.grid;
+    r.v = std::move(f.values);
+  } catch (const InputError& e) {
+    ADD_FAILURE() << e.what();
   }
-  double gt[6];
-  ds->GetGeoTransform(gt);
-  r.grid.nx = ds->GetRasterXSize(), r.grid.ny = ds->GetRasterYSize();
-  r.grid.originX = gt[0], r.grid.originY = gt[3], r.grid.cellSize = gt[1];
-  r.v.resize(r.grid.size());
-  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, r.grid.nx, r.grid.ny, r.v.data(), r.grid.nx, r.grid.ny,
-                                           GDT_Float32, 0, 0),
-            CE_None);
-  GDALClose(ds);
   return r;
 }
 

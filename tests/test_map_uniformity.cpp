@@ -1,6 +1,7 @@
 // A resting uniform cover gives a uniform map (issue 40): the thickness maps of a layer seeded on
 // a flat and on a sloping DEM vary from cell to cell by under 2 %, with no bands where the
 // particle lattice and the map grid beat against each other.
+#include "io/common/raster_reader.h"
 #include "io/run/run_driver.h"
 #include "io/terrain/terrain_loader.h"
 #include "terrain_test_support.h"
@@ -8,7 +9,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 using namespace talus;
@@ -36,18 +36,11 @@ std::vector<float> coverMap(double degrees, const std::string& name, double jitt
   opt.outDir = dir;
   opt.progress = false;
   if (!runScene(loadSceneString(text, name + ".toml"), opt).ok) ADD_FAILURE() << "run failed";
-  GDALAllRegister();
-  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpen((dir + "/maps/initial_thickness.tif").c_str(), GA_ReadOnly));
-  if (!ds) {
-    ADD_FAILURE() << "no initial_thickness.tif";
-    return {};
-  }
-  double gt[6];
-  ds->GetGeoTransform(gt);
-  const int nx = ds->GetRasterXSize(), ny = ds->GetRasterYSize();
-  std::vector<float> v(size_t(nx) * ny), inside;
-  (void)ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0);
-  GDALClose(ds);
+  const FloatRaster map = readFloatRaster(dir + "/maps/initial_thickness.tif", "the initial thickness map");
+  const int nx = map.grid.nx, ny = map.grid.ny;
+  const std::vector<float>& v = map.values;
+  std::vector<float> inside;
+  const double gt[6] = {map.grid.originX, map.grid.cellSize, 0, map.grid.originY, 0, -map.grid.cellSize};
   for (int r = 0; r < ny; ++r)
     for (int c = 0; c < nx; ++c) {
       const double x = gt[0] + (c + 0.5) * gt[1] - kX0, y = gt[3] - (r + 0.5) * gt[1] - kY0;
