@@ -133,37 +133,16 @@ double ErodibleBed::erodedMass(int32_t i, int32_t j, size_t cover) const {
   return 0;
 }
 
-double ErodibleBed::initialMass(size_t cover) const {
-  double m = 0;
-  for (const Entry& e : entries_)
-    if (size_t(e.cover) == cover) m += e.initial;
-  return m;
-}
-
-double ErodibleBed::remainingMass(size_t cover) const {
-  double m = 0;
-  for (const Entry& e : entries_)
-    if (size_t(e.cover) == cover) m += e.remaining;
-  return m;
-}
-
-double ErodibleBed::pooledMass(size_t cover) const {
-  double m = 0;
-  for (const Entry& e : entries_)
-    if (size_t(e.cover) == cover) m += e.pool;
-  return m;
+double ErodibleBed::initialMass(size_t cover) const { return sum(cover, 0.0, [](const Entry& e) { return e.initial; }); }
+double ErodibleBed::remainingMass(size_t cover) const { return sum(cover, 0.0, [](const Entry& e) { return e.remaining; }); }
+double ErodibleBed::pooledMass(size_t cover) const { return sum(cover, 0.0, [](const Entry& e) { return e.pool; }); }
+Vec3d ErodibleBed::pooledMomentum(size_t cover) const {
+  return sum(cover, Vec3d(Vec3d::Zero()), [](const Entry& e) { return e.momentum; });
 }
 
 namespace {
 constexpr size_t kSaved = 10; ///< doubles per entry in a checkpoint
 } // namespace
-
-Vec3d ErodibleBed::pooledMomentum(size_t cover) const {
-  Vec3d p = Vec3d::Zero();
-  for (const Entry& e : entries_)
-    if (size_t(e.cover) == cover) p += e.momentum;
-  return p;
-}
 
 void ErodibleBed::save(StateArchive& a) const {
   std::vector<double> v;

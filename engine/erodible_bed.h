@@ -96,6 +96,12 @@ private:
     double idle = 0;                     ///< time since the column last eroded (s)
   };
   static uint64_t key(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
+  /// f(entry) summed over the entries of one cover, in entry order.
+  template <class T, class F> T sum(size_t cover, T s, F&& f) const {
+    for (const Entry& e : entries_)
+      if (size_t(e.cover) == cover) s += f(e);
+    return s;
+  }
 
   std::vector<ErodibleCover> covers_;
   std::shared_ptr<const Sdf> ground_;
