@@ -12,6 +12,7 @@
 #include "tools/animate_command.h"
 #include "tools/render_command.h"
 #include "tools/benchmark.h"
+#include "tools/calibrate_command.h"
 #include "tools/ensemble_command.h"
 #include "tools/work_precision.h"
 #include "tools/terrain_command.h"
@@ -176,6 +177,8 @@ int main(int argc, char** argv) {
   auto* synthCmd = addSynthDemCommand(app, synthOpt);
   EnsembleOptions ensembleOpt;
   auto* ensembleCmd = addEnsembleCommand(app, ensembleOpt);
+  CalibrateOptions calibrateOpt;
+  auto* calibrateCmd = addCalibrateCommand(app, calibrateOpt);
   AnalysisOptions analysisOpt;
   const AnalysisCommands analysisCmds = addAnalysisCommands(app, analysisOpt);
   AnimateOptions animateOpt;
@@ -198,6 +201,7 @@ int main(int argc, char** argv) {
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);
+    if (*calibrateCmd) return runCalibrateCommand(calibrateOpt);
     if (*animateCmd) return runAnimateCommand(animateOpt);
     if (*renderCmd) return runRenderCommand(renderOpt);
     if (const int rc = runAnalysisCommand(analysisCmds, analysisOpt); rc >= 0) return rc;

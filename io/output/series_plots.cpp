@@ -93,6 +93,15 @@ void writeLineChart(const std::string& path, const std::string& title, const std
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (size_t i = 0; i < lines.size(); ++i) {
     pen(i);
+    if (lines[i].points) {
+      for (size_t k = 0; k < x.size() && k < lines[i].y.size(); ++k)
+        if (std::isfinite(lines[i].y[k])) {
+          cairo_new_sub_path(cr);
+          cairo_arc(cr, px(x[k]), py(lines[i].y[k]), 4, 0, 2 * M_PI);
+        }
+      cairo_fill(cr);
+      continue;
+    }
     bool down = false;
     for (size_t k = 0; k < x.size() && k < lines[i].y.size(); ++k) {
       const double v = lines[i].y[k];

@@ -17,6 +17,7 @@ struct ChartLine {
   std::string label;
   std::vector<double> y;
   bool steps = false; ///< y[k] is a mean over (x[k-1], x[k]]: drawn as a staircase
+  bool points = false; ///< each finite y[k] a dot at x[k], not joined (samples among a curve's x)
 };
 void writeLineChart(const std::string& path, const std::string& title, const std::string& xLabel,
                     const std::string& yLabel, const std::vector<double>& x, const std::vector<ChartLine>& lines);
