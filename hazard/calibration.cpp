@@ -238,8 +238,12 @@ CalibrationResult calibrate(const std::string& dirIn, const CalibrationSettings&
     double ei = 0;
     for (const auto& x : proposeBatch(fitSurrogate(done), done, n, ei)) units.push_back(fullUnit(x, r.kept, fixedUnit));
     r.lastEi = ei;
-    if (ei < s.eiStop) {
-      if (log) std::fprintf(log, "talus calibrate: expected improvement %.3g below %.3g: search ended\n", ei, s.eiStop);
+    double lo = INFINITY, hi = -INFINITY; // the stop is relative to the spread of the losses seen
+    for (const auto& e : done)
+      if (std::isfinite(e.loss)) lo = std::min(lo, e.loss), hi = std::max(hi, e.loss);
+    if (ei < s.eiStop * (hi - lo)) {
+      if (log) std::fprintf(log, "talus calibrate: expected improvement %.3g below %.3g of the losses' range %.3g: "
+                            "search ended\n", ei, s.eiStop, hi - lo);
       break;
     }
     r.stopped = !loop.evaluate("search", units);

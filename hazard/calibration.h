@@ -8,7 +8,7 @@
 //   2. an initial Latin hypercube over the parameters kept;
 //   3. rounds of `batch` members proposed by expected improvement on a Gaussian-process surrogate
 //      of the loss (hazard/surrogate_search.h), until `budget` members or until the largest
-//      expected improvement is below `eiStop`.
+//      expected improvement is below `eiStop` times the range of the losses seen so far.
 //
 // The loss is hazard/calibration_loss.h's. The result: the best member's parameters, the
 // surrogate's plausible ranges (every parameter value whose predicted loss is within `tolerance`
@@ -37,7 +37,7 @@ struct CalibrationSettings {
   size_t budget = 20;      ///< members in all
   size_t batch = 1;        ///< members proposed per round (run at once)
   double tolerance = 0.05; ///< loss above the best within which parameters are plausible
-  double eiStop = 1e-3;    ///< stop when the expected improvement falls below (loss units)
+  double eiStop = 1e-3;    ///< stop when EI < eiStop x (largest - smallest loss seen)
   uint64_t seed = 1;
 };
 

@@ -22,6 +22,13 @@ DemRaster readKeepingNodata(const std::string& file) {
   return readDem(file, opt);
 }
 
+/// A footprint given as a raster (another model's peak field) rather than a polygon file.
+bool isRaster(const std::string& file) {
+  const auto dot = file.rfind('.');
+  const std::string ext = dot == std::string::npos ? "" : file.substr(dot);
+  return ext == ".asc" || ext == ".tif" || ext == ".tiff";
+}
+
 std::string number(double v) {
   if (!std::isfinite(v)) return "nan";
   char b[32];
@@ -73,7 +80,8 @@ ObservedEvent::ObservedEvent(std::vector<Observation> observations, const Ensemb
                                         "[ensemble] path (or an [[output.paths]] line, or an AvaFrame folder's path)");
   if (rasterResult_.empty()) rasterResult_ = settings_.runoutResult;
   for (const auto& o : observations_) {
-    if (o.kind == ObservedKind::Footprint) polygons_.push_back(PolygonSet::read(o.file));
+    if (o.kind == ObservedKind::Footprint && isRaster(o.file)) footprintRasters_.push_back(readKeepingNodata(o.file));
+    else if (o.kind == ObservedKind::Footprint) polygons_.push_back(PolygonSet::read(o.file));
     if (o.kind == ObservedKind::Raster) {
       if (rasterFile_) throw InputError("--observed", 0, o.text, "one raster observation at most");
       rasterFile_ = std::make_unique<DemRaster>(readKeepingNodata(o.file));
@@ -99,11 +107,16 @@ void ObservedEvent::prepare(double cellSize) {
   transform_ = std::make_unique<aimec::Transform>(
       aimec::makeTransform(Polyline(settings_.path), settings_.domainWidth, cellSize, ground_.get()));
   const aimec::Transform& t = *transform_;
-  if (!polygons_.empty()) {
+  if (!polygons_.empty() || !footprintRasters_.empty()) {
     footprint_.assign(t.x.size(), 0.0f);
     for (size_t p = 0; p < t.x.size(); ++p)
       for (const auto& poly : polygons_)
         if (poly.contains(t.x[p], t.y[p])) footprint_[p] = 1.0f;
+    for (const auto& r : footprintRasters_) {
+      const std::vector<float> v = aimec::resample(t, r);
+      for (size_t p = 0; p < t.x.size(); ++p)
+        if (v[p] > settings_.runoutThreshold) footprint_[p] = 1.0f;
+    }
   }
   if (rasterFile_) raster_ = aimec::resample(t, *rasterFile_);
 }

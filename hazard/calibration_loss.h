@@ -1,9 +1,10 @@
 // How far a run is from an observed event, from AIMEC's measures on its (s, l) path grid
 // (hazard/aimec.h). The observation is any combination of
 //
-//   footprint=FILE   a polygon file (deposit outline, affected area): the run's footprint is where
-//                    its `result` peak field (AIMEC's runoutResType, default ppr) exceeds the
-//                    threshold (thresholdValue, default 1 kPa)
+//   footprint=FILE   a polygon file (deposit outline, affected area), or a raster (.asc, .tif:
+//                    another model's peak field) read as where it exceeds the threshold; the
+//                    run's footprint is where its `result` peak field (AIMEC's runoutResType,
+//                    default ppr) exceeds the threshold (thresholdValue, default 1 kPa)
 //   runout=X,Y       the observed run-out point, projected on the path to its distance s_obs
 //   raster=FILE      a raster of the `raster_result` type (default the same as result): a
 //                    deposit thickness from a DEM difference, another model's peak field
@@ -94,6 +95,7 @@ private:
   std::shared_ptr<const DemRaster> ground_;
   std::unique_ptr<aimec::Transform> transform_;
   std::vector<PolygonSet> polygons_;      ///< footprint observations (their union counts)
+  std::vector<DemRaster> footprintRasters_; ///< footprints given as rasters: where > threshold
   std::unique_ptr<DemRaster> rasterFile_; ///< the raster observation
   std::vector<float> footprint_, raster_; ///< the observations on the path grid
   double sObserved_ = NAN;

@@ -55,7 +55,7 @@ CLI::App* addCalibrateCommand(CLI::App& app, CalibrateOptions& o) {
   c->add_option("--screen", o.screen, "Morris trajectories of the screening (0: none; one parameter: none)");
   c->add_option("--screen-keep", o.screenKeep, "Keep a parameter whose mu* reaches this fraction of the largest");
   c->add_option("--tolerance", o.tolerance, "Loss above the best within which parameters are plausible");
-  c->add_option("--ei-stop", o.eiStop, "Stop when the expected improvement falls below this loss");
+  c->add_option("--ei-stop", o.eiStop, "Stop when the expected improvement falls below this fraction of the losses' range");
   c->add_option("--seed", o.seed, "Seed of the screening and the initial design");
   c->add_option("--out", o.out, "Calibration folder (members in member_NNN/)");
   c->add_option("--threads", o.threads, "Threads per member")->check(CLI::PositiveNumber);

@@ -106,8 +106,9 @@ int cmdCheck(const std::string& scene, const std::vector<std::string>& sets) {
       std::printf("  %-16s %-10s %-8s erodible field of %.6g kg, geometric %.6g m3\n", b.label.c_str(),
                   b.material.c_str(), b.kind.c_str(), b.fieldMass, b.geometricVolume);
     else
-      std::printf("  %-16s %-10s %-8s %9zu particles, seeded %.6g m3 / geometric %.6g m3\n", b.label.c_str(),
-                  b.material.c_str(), b.kind.c_str(), b.particles, b.seededVolume, b.geometricVolume);
+      std::printf("  %-16s %-10s %-8s %9zu particles, seeded %.6g m3 / geometric %.6g m3%s\n", b.label.c_str(),
+                  b.material.c_str(), b.kind.c_str(), b.particles, b.seededVolume, b.geometricVolume,
+                  b.massScale != 1 ? (", masses x " + std::to_string(b.massScale).substr(0, 6) + " to hold it").c_str() : "");
   return 0;
 }
 

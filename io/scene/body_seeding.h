@@ -23,6 +23,9 @@ struct BodyReport {
   double meanThickness = 0;   ///< terrain bodies: vertical, volume / plan area (m); 0 otherwise
   int particlesPerCell = 0;   ///< terrain bodies: the seeding's (the body's own or the scene's)
   double fieldMass = 0;       ///< a cover made an erodible field (no particles): its mass (kg)
+  /// Terrain bodies with match_volume (releases by default): the factor the particles' masses
+  /// were scaled by so that the body holds geometricVolume; 1 when not scaled.
+  double massScale = 1;
 };
 
 /// Below this many cells across its mean thickness a released body's peak flow heights lose
