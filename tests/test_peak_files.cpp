@@ -169,3 +169,49 @@ preset = "snow"
   EXPECT_NEAR(r.grid.originX, 167455.348391387 - 4.997678230579 / 2, 1e-6);
   EXPECT_NEAR(r.grid.cellSize, 4.997678230579, 1e-9);
 }
+
+TEST(PeakFiles, TheMassLogAndConfigurationAreWhereAndAsAvaFrameReadsThem) {
+  // com1DFA's mass_<simName>.txt (AIMEC's mass analysis: numpy.loadtxt, comma-separated, one
+  // header row) and configurationFiles/<simName>.ini (cfgUtils: configparser, keys as written).
+  SceneSetup s;
+  const std::string dir = runScene("peak_files_mass", {"simulation.end_time=0.55"}, &s);
+  const std::string simName = peakFiles(dir).front().substr(0, peakFiles(dir).front().rfind('_'));
+  std::ifstream in(dir + "/mass_" + simName + ".txt");
+  ASSERT_TRUE(in) << "mass_" << simName << ".txt";
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "time, current, entrained, detrained");
+  std::vector<std::array<double, 4>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::array<double, 4> r{};
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf, %lf, %lf, %lf", &r[0], &r[1], &r[2], &r[3]), 4) << line;
+    rows.push_back(r);
+  }
+  // 0.1 ... 0.5 s; the released mass throughout (nothing leaves the domain in 0.55 s), no entrainment.
+  SceneSetup seeded = loadSceneString(kScene, "peak.toml");
+  double mass = 0;
+  for (const auto& g : seeded.groups)
+    for (Real m : g->particles.mass) mass += double(m);
+  ASSERT_EQ(rows.size(), 5u);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_NEAR(rows[k][0], 0.1 * double(k + 1), 1e-9);
+    EXPECT_NEAR(rows[k][1], mass, 1e-6 * mass) << "row " << k;
+    EXPECT_EQ(rows[k][2], 0.0);
+    EXPECT_EQ(rows[k][3], 0.0);
+  }
+  // Python's configparser (as AvaFrame's cfgUtils) and numpy.loadtxt (as AIMEC) read them, in
+  // Debian's /usr/bin/python3 with python3-numpy (tools/setup.sh installs both).
+  const std::string ini = dir + "/configurationFiles/" + simName + ".ini";
+  ASSERT_TRUE(fs::exists(ini));
+  const std::string py = "/usr/bin/python3 -c \"import configparser, numpy; c = configparser.ConfigParser(); c.optionxform = str; "
+                         "c.read('" + ini + "'); m = numpy.loadtxt('" + dir + "/mass_" + simName +
+                         ".txt', delimiter=',', skiprows=1); print(c['GENERAL']['mu'], c['GENERAL']['simTypeActual'], "
+                         "c['TALUS']['bodies[0].thickness'], m.shape[0], m.shape[1])\" 2>&1";
+  FILE* p = popen(py.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[512] = {};
+  std::string out;
+  while (fgets(buf, sizeof buf, p)) out += buf;
+  ASSERT_EQ(pclose(p), 0) << out;
+  EXPECT_EQ(out, "0.29999999999999999 null 3 5 4\n");
+}

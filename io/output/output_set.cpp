@@ -1,5 +1,6 @@
 #include "io/output/output_set.h"
 
+#include "io/output/avaframe_run_files.h"
 #include "io/output/h5_frame_writer.h"
 #include "io/output/hazard_maps.h"
 #include "io/output/ply_writer.h"
@@ -30,6 +31,7 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
     const double cell = o.maps.cellSize > 0 ? o.maps.cellSize : 2 * run.dx;
     RasterGrid grid = run.dem ? run.dem->grid : HazardMaps::domainGrid(run, cell);
     outputs_.push_back(std::make_unique<HazardMaps>(outDir, grid, run.dem, o.maps));
+    if (o.maps.peakFiles.enabled) outputs_.push_back(std::make_unique<AvaFrameRunFiles>(outDir, o, run));
     // The run-up and flooding map, on the same grid, where there is water.
     const auto& models = run.materialModels;
     if (!o.waterMaterials.empty() || std::find(models.begin(), models.end(), "water") != models.end())

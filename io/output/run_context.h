@@ -21,6 +21,7 @@ struct RunContext {
   std::string crsWkt;                            ///< the DEM's CRS, else the scene's [output] crs
   std::vector<std::string> materialNames;
   std::vector<std::string> materialModels; ///< per material, its model's name ("water", ...)
+  std::string sceneKeys; ///< every scene key after overrides, "dotted.key = value" lines (ConfigTable::keyLines)
 };
 
 } // namespace talus

@@ -365,6 +365,7 @@ RunContext SceneSetup::runContext() const {
   r.crsWkt = dem ? dem->grid.crsWkt : output.crsWkt;
   r.materialNames = materialNames;
   r.materialModels = materialModels;
+  r.sceneKeys = keyLines;
   return r;
 }
 
@@ -403,6 +404,7 @@ SceneSetup build(ConfigTable& root, const std::vector<std::string>& overrides, c
   SceneSetup s = buildScene(root, slice);
   s.notes.insert(s.notes.begin(), notes.begin(), notes.end());
   s.stateKeys = stateKeys(root);
+  s.keyLines = root.keyLines();
   s.hash = fnv1aHex(s.stateKeys);
   return s;
 }

@@ -35,6 +35,8 @@ struct SceneSetup {
   /// each, less those a resumed run may change (simulation.end_time, output.directory, the frame
   /// formats and intervals, plots, series_interval): what decides the state a checkpoint holds.
   std::string stateKeys;
+  /// Every key after overrides (ConfigTable::keyLines): what a run records of its configuration.
+  std::string keyLines;
   /// 16 hex digits identifying that state: FNV-1a over stateKeys. A checkpoint is resumed only by
   /// a scene with the same hash, so a run can be extended (a later end_time) but not given other
   /// physics.

@@ -1,0 +1,111 @@
+#include "io/output/avaframe_run_files.h"
+
+#include "io/common/atomic_file.h"
+#include "io/output/peak_files.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace talus {
+
+namespace fs = std::filesystem;
+
+AvaFrameRunFiles::AvaFrameRunFiles(std::string outDir, const OutputSettings& s, const RunContext& run)
+    : outDir_(std::move(outDir)), simName_(avaFrameSimName(s.maps.peakFiles)), simType_(s.maps.peakFiles.simType),
+      sceneKeys_(run.sceneKeys), erodible_(s.maps.erodible), dx_(run.dx), endTime_(run.endTime),
+      entrained_(s.maps.erodible) {}
+
+void AvaFrameRunFiles::onStart(const Simulation& sim) {
+  entrained_.onStart(sim);
+  rows_.clear();
+  next_ = 1;
+}
+
+void AvaFrameRunFiles::onStep(const Simulation& sim, double) {
+  // Rows on com1DFA's 0.1 s clock, each the state after the step that reaches it.
+  while (sim.time() + 1e-9 >= double(next_) * kInterval) sample(sim, double(next_++) * kInterval);
+}
+
+void AvaFrameRunFiles::sample(const Simulation& sim, double t) {
+  double current = 0, entrained = 0;
+  for (const auto& g : sim.groups()) {
+    if (std::find(erodible_.begin(), erodible_.end(), g->name()) != erodible_.end()) continue; // covers: below
+    for (Real m : g->particles.mass) current += double(m);
+  }
+  std::vector<double> covers;
+  entrained_.sample(sim, 0, covers);
+  for (double m : covers) entrained += m, current += m; // what a cover lost is in the flow
+  if (const ErodibleBed* bed = sim.bed())
+    for (size_t k = 0; k < bed->covers().size(); ++k) {
+      entrained += bed->entrainedMass(k);
+      current += bed->pooledMass(k); // eroded, not yet a particle (those are counted above)
+    }
+  rows_.insert(rows_.end(), {t, current, entrained});
+}
+
+std::string AvaFrameRunFiles::configuration() const {
+  auto value = [&](const std::string& key) -> std::string {
+    std::istringstream in(sceneKeys_);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(key + " = ", 0) == 0) {
+        std::string v = line.substr(key.size() + 3);
+        if (v.size() >= 2 && v.front() == '"' && v.back() == '"') v = v.substr(1, v.size() - 2);
+        return v;
+      }
+    return "";
+  };
+  auto escaped = [](std::string v) { // configparser's interpolation reads % as a reference
+    for (size_t p = v.find('%'); p != std::string::npos; p = v.find('%', p + 2)) v.insert(p, "%");
+    return v;
+  };
+  const std::string law = value("terrain.boundary");
+  const std::string frict = law == "samosat" ? "samosAT" : law == "voellmy" ? "Voellmy" : law == "coulomb" ? "Coulomb" : law;
+  std::ostringstream o;
+  o << "# Talus run " << simName_ << ": what com1DFA names, then every scene key ([TALUS])\n[GENERAL]\n";
+  o << "simTypeActual = " << simType_ << "\nmodelType = mpm\ntEnd = " << endTime_ << "\nmeshCellSize = " << dx_ << "\n";
+  if (!frict.empty()) o << "frictModel = " << frict << "\n";
+  // The parameters an AvaFrame user varies, under com1DFA's names where Talus has them.
+  const std::pair<const char*, const char*> names[] = {{"mu", "terrain.friction"},
+                                                       {"relTh", "avaframe.release_thickness"},
+                                                       {"entEroEnergy", "avaframe.erosion_energy"}};
+  for (const auto& [af, talus] : names)
+    if (const std::string v = value(talus); !v.empty()) o << af << " = " << escaped(v) << "\n";
+  o << "\n[TALUS]\n";
+  std::istringstream in(sceneKeys_);
+  for (std::string line; std::getline(in, line);) o << escaped(line) << "\n";
+  return o.str();
+}
+
+void AvaFrameRunFiles::onFinish(const Simulation&, bool) {
+  const std::string mass = "mass_" + simName_ + ".txt";
+  writeAtomically((fs::path(outDir_) / mass).string(), [&](const std::string& path) {
+    std::ofstream out(path);
+    out << "time, current, entrained, detrained\n";
+    char line[128];
+    for (size_t r = 0; r + 2 < rows_.size(); r += 3) {
+      std::snprintf(line, sizeof line, "%.2f,    %.6f,    %.6f,    %.6f\n", rows_[r], rows_[r + 1], rows_[r + 2], 0.0);
+      out << line;
+    }
+  });
+  recordFile(mass);
+  const std::string ini = "configurationFiles/" + simName_ + ".ini";
+  fs::create_directories(fs::path(outDir_) / "configurationFiles");
+  writeAtomically((fs::path(outDir_) / ini).string(), [&](const std::string& path) { std::ofstream(path) << configuration(); });
+  recordFile(ini);
+}
+
+void AvaFrameRunFiles::save(StateArchive& a, const std::string& prefix) const {
+  a.putVector(prefix + "rows", rows_);
+  a.putValue(prefix + "next", next_);
+}
+
+void AvaFrameRunFiles::load(const StateArchive& a, const std::string& prefix) {
+  a.getVector(prefix + "rows", rows_);
+  next_ = a.getValue<long>(prefix + "next");
+}
+
+} // namespace talus

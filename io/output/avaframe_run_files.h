@@ -1,0 +1,49 @@
+// What com1DFA writes beside its peak files, so that AvaFrame's tools read a Talus run as one of
+// theirs (ana3AIMEC's mass analysis, its ordering and filtering of runs by parameter):
+//
+//   mass_<simName>.txt                 "time, current, entrained, detrained", a row every 0.1 s
+//                                      (com1DFA's mass log, read by AIMEC with flagMass = True)
+//   configurationFiles/<simName>.ini   the run's configuration as cfgUtils reads it: [GENERAL]
+//                                      with com1DFA's names for what Talus has an equivalent of,
+//                                      [TALUS] with every scene key after overrides
+//
+// current: the mass of every particle in the domain except those of [output.maps] erodible
+// covers, plus what the covers lost (entrained), plus mass eroded from erodible fields that has
+// not yet become a particle; entrained: the covers' and fields' entrained mass; detrained: 0
+// (Talus deposits no mass out of the flow). A row is the state after the step that reaches its
+// time. Written with the peak files ([output] peak_files).
+#pragma once
+
+#include "io/output/entrained_mass.h"
+#include "io/output/output_observer.h"
+#include "io/output/output_settings.h"
+#include "io/output/run_context.h"
+
+namespace talus {
+
+class AvaFrameRunFiles final : public OutputObserver {
+public:
+  AvaFrameRunFiles(std::string outDir, const OutputSettings& settings, const RunContext& run);
+  std::string name() const override { return "avaframe_run_files"; }
+  void onStart(const Simulation& sim) override;
+  void onStep(const Simulation& sim, double dt) override;
+  void onFinish(const Simulation& sim, bool completed) override;
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
+
+  /// com1DFA's interval between rows of the mass file (s).
+  static constexpr double kInterval = 0.1;
+
+private:
+  void sample(const Simulation& sim, double t);
+  std::string configuration() const;
+
+  std::string outDir_, simName_, simType_, sceneKeys_;
+  std::vector<std::string> erodible_;
+  double dx_, endTime_;
+  EntrainedMassColumns entrained_;
+  std::vector<double> rows_; ///< time, current, entrained per row
+  long next_ = 1;            ///< the next row's time in intervals
+};
+
+} // namespace talus
