@@ -215,3 +215,42 @@ TEST(PeakFiles, TheMassLogAndConfigurationAreWhereAndAsAvaFrameReadsThem) {
   ASSERT_EQ(pclose(p), 0) << out;
   EXPECT_EQ(out, "0.29999999999999999 null 3 5 4\n");
 }
+
+TEST(PeakFiles, Com1dfaGridIsTheMeshCom1dfaWritesAndValuesAreResampledOntoIt) {
+  // avaWog's DEM (Inputs/avaWog.asc): 490 x 555 cells of 4.997678230579 m, lower-left centre
+  // (167455.348391387, 361955.626633194). com1DFA's reference peak files
+  // (reference_com1DFA_avaWogNullTest/*_ppr.asc): 489 x 554 of 5 m, xllcorner 167452.848391387,
+  // yllcorner 361953.126633193984.
+  RasterGrid dem;
+  dem.nx = 490, dem.ny = 555, dem.cellSize = 4.997678230579;
+  dem.originX = 167455.348391387 - 0.5 * dem.cellSize;
+  dem.originY = 361955.626633194 - 0.5 * dem.cellSize + dem.ny * dem.cellSize;
+  const RasterGrid g = com1dfaGrid(dem, 5.0);
+  EXPECT_EQ(g.nx, 489);
+  EXPECT_EQ(g.ny, 554);
+  EXPECT_NEAR(g.originX, 167452.848391387, 1e-6);
+  EXPECT_NEAR(g.originY - g.ny * g.cellSize, 361953.126633194, 1e-6);
+  // A linear field is reproduced exactly (bilinear), no data spreads to the nearest centre only,
+  // and centres beyond the source are NaN.
+  std::vector<float> v(dem.size());
+  for (int r = 0; r < dem.ny; ++r)
+    for (int c = 0; c < dem.nx; ++c) v[dem.index(c, r)] = float(0.01 * (dem.cellCentreX(c) - 167000) + 0.02 * r);
+  v[dem.index(100, 100)] = -9999;
+  const std::vector<float> out = resampleCentres(dem, v, -9999, g);
+  size_t nan = 0;
+  for (int r = 0; r < g.ny; ++r)
+    for (int c = 0; c < g.nx; ++c) {
+      const float o = out[g.index(c, r)];
+      if (std::isnan(o)) {
+        ++nan;
+        continue;
+      }
+      const double rowF = (dem.originY - g.cellCentreY(r)) / dem.cellSize - 0.5;
+      const double expect = 0.01 * (g.cellCentreX(c) - 167000) + 0.02 * rowF;
+      if (std::abs(c * 5.0 - 100 * dem.cellSize) > 10 || std::abs(rowF - 100) > 2)
+        EXPECT_NEAR(o, expect, 2e-4 * std::abs(expect)) << c << "," << r;
+    }
+  // The mesh lies within the DEM's centres; of the mesh centres around the no-data cell, the one
+  // nearest to it has no data, the others take their nearest centre's value.
+  EXPECT_EQ(nan, 1u);
+}

@@ -141,11 +141,16 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
     const std::string src = dem_ ? fs::path(dem_->sourcePath).extension().string() : "";
     const std::string format = !settings_.peakFiles.format.empty() ? settings_.peakFiles.format
                                : src == ".asc" || src == ".ASC" ? "asc" : "tif";
-    for (const auto& f : writePeakFiles(outDir_, settings_.peakFiles, format, grid_,
-                                        {raster(MaxHeightNormal), raster(MaxSpeed), raster(MaxPressure),
-                                         raster(MaxHeightVertical)},
-                                        kNoData))
-      recordFile(f);
+    std::vector<std::vector<float>> peaks = {raster(MaxHeightNormal), raster(MaxSpeed), raster(MaxPressure),
+                                             raster(MaxHeightVertical)};
+    RasterGrid grid = grid_;
+    float nodata = kNoData;
+    if (settings_.peakFiles.grid == "com1dfa") { // com1DFA's own mesh, no data NaN as com1DFA writes
+      grid = com1dfaGrid(grid_, settings_.peakFiles.meshCellSize);
+      for (auto& p : peaks) p = resampleCentres(grid_, p, kNoData, grid);
+      nodata = NAN;
+    }
+    for (const auto& f : writePeakFiles(outDir_, settings_.peakFiles, format, grid, peaks, nodata)) recordFile(f);
   }
   if (settings_.animation.enabled) makeFilm();
 }

@@ -58,6 +58,8 @@ struct PeakFileSettings {
   std::string releaseName = "release"; ///< the release scenario (first release body)
   std::string simType = "null";        ///< "null" (releases only) or "ent" (with covers)
   std::string simHash = "0000000000";  ///< 10 hex digits naming the scene's configuration
+  std::string grid = "dem";            ///< "dem" (the maps' grid) or "com1dfa" (com1DFA's mesh)
+  double meshCellSize = 5;             ///< com1DFA's meshCellSize (m), for grid = "com1dfa"
 };
 
 /// The film of a run (io/output/animation.h): frames recorded with the hazard maps.

@@ -16,7 +16,8 @@
 //             pfd  peak flow depth measured vertically (m): not an AvaFrame type since 1.1,
 //                  when AvaFrame renamed its pfd (then slope-normal) to pft
 //
-// Rasters are on the DEM's grid, in the DEM's format unless peak_file_format says otherwise.
+// Rasters are on the DEM's grid (no data -9999), or with peak_file_grid = "com1dfa" on com1DFA's
+// mesh (no data NaN), in the DEM's format unless peak_file_format says otherwise.
 #pragma once
 
 #include "io/common/raster_grid.h"
@@ -32,6 +33,17 @@ std::string avaFrameSimName(const PeakFileSettings& s);
 
 /// The AvaFrame result types Talus writes, in order: pft, pfv, ppr, pfd.
 const std::vector<std::string>& peakResultTypes();
+
+/// com1DFA's output mesh for a DEM grid: the DEM's first (south-west) cell centre kept, cells of
+/// `meshCellSize`, floor((n - 1) dx_dem / meshCellSize) + 1 of them per axis (avaWog's 490 x 555
+/// cells of 4.99768 m give com1DFA's 489 x 554 of 5 m).
+RasterGrid com1dfaGrid(const RasterGrid& dem, double meshCellSize);
+
+/// `values` on `from` (cell-centred, `nodata` where none) at the cell centres of `onto`:
+/// bilinear where the four surrounding centres have data, else the nearest centre's value, NaN
+/// outside `from` or without data.
+std::vector<float> resampleCentres(const RasterGrid& from, const std::vector<float>& values, float nodata,
+                                   const RasterGrid& onto);
 
 /// Writes one file per result type (values[i] for peakResultTypes()[i]) into outDir/peakFiles in
 /// `format` ("asc", "tif" or "both"); returns the paths relative to outDir.

@@ -133,6 +133,8 @@ OutputSettings readOutputSettings(const ConfigTable* out, const std::vector<std:
   readMaps(*out, materialNames, s.maps);
   s.maps.peakFiles.enabled = out->boolean("peak_files", false);
   if (out->has("peak_file_format")) s.maps.peakFiles.format = out->choice("peak_file_format", "", {"asc", "tif", "both"});
+  s.maps.peakFiles.grid = out->choice("peak_file_grid", "dem", {"dem", "com1dfa"});
+  s.maps.peakFiles.meshCellSize = out->positive("peak_file_cell_size", 5.0);
   if (s.maps.peakFiles.enabled && !s.maps.enabled)
     out->fail("peak_files", "AvaFrame peak files are written from the hazard maps: they need maps = true");
   readAnimation(*out, s.maps);
