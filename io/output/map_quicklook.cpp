@@ -105,7 +105,24 @@ static cairo_surface_t* drawPage(const RasterGrid& grid, const std::vector<float
   const double scale = std::min(900.0 / w, 900.0 / h);
   const double mapW = w * scale, mapH = h * scale;
   const double left = 24, top = 70, right = style.classes.empty() ? 130 : 150, bottom = 64;
-  const int W = int(std::ceil(left + mapW + right)), H = int(std::ceil(top + mapH + bottom));
+  // A narrow map (a path grid, a gully) still gets a page as wide as its titles.
+  double titleW = 0;
+  {
+    cairo_surface_t* probe = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+    cairo_t* pc = cairo_create(probe);
+    cairo_text_extents_t e;
+    cairo_select_font_face(pc, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(pc, 20);
+    cairo_text_extents(pc, style.title.c_str(), &e);
+    titleW = e.x_advance;
+    cairo_select_font_face(pc, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(pc, 13);
+    cairo_text_extents(pc, (style.subtitle + "  (no flow in this map)").c_str(), &e);
+    titleW = std::max(titleW, e.x_advance);
+    cairo_destroy(pc);
+    cairo_surface_destroy(probe);
+  }
+  const int W = int(std::ceil(std::max(left + mapW + right, left + titleW + 24))), H = int(std::ceil(top + mapH + bottom));
   cairo_surface_t* page = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H);
   cairo_t* cr = cairo_create(page);
   cairo_set_source_rgb(cr, 1, 1, 1);
