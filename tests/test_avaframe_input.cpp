@@ -1,6 +1,7 @@
 // AvaFrame avalanche folders as scene input (io/terrain/avaframe_folder, io/scene/avaframe_scene):
 // the avaWog, avaKot and idealised folders of ../shared (skipped without it), and folders built
 // here to break one rule at a time.
+#include "engine/resistance_law.h"
 #include "io/scene/avaframe_scene.h"
 #include "io/scene/scene.h"
 #include "io/terrain/avaframe_folder.h"
@@ -109,7 +110,7 @@ TEST(AvaFrameInput, EntrainmentAreasBecomeErodibleCoversWithTheirThickness) {
   EXPECT_NEAR(c.bodies[0].geometricVolume / 165103.0, 2.0, 0.02);
 }
 
-TEST(AvaFrameInput, ResistanceAreasAreReadAsRegionsAndReportedNotApplied) {
+TEST(AvaFrameInput, ResistanceAreasAreAppliedAsAvaFramesResSimulationWhenAsked) {
   if (test::sharedDir().empty()) GTEST_SKIP() << "../shared (AvaFrame avaKot data) not found";
   const AvaFrameFolder f = readAvaFrameFolder(shared("avaframe_avaKot"));
   ASSERT_TRUE(f.resistance);
@@ -117,9 +118,24 @@ TEST(AvaFrameInput, ResistanceAreasAreReadAsRegionsAndReportedNotApplied) {
   ASSERT_EQ(regions.size(), 2u);
   EXPECT_EQ(regions[1].feature, 1);
   EXPECT_DOUBLE_EQ(regions[0].cResH, 0.01); // AvaFrame's default (com1DFACfg.ini at the snapshot)
+  // AvaFrame's null simulation by default: read, not used, and said so.
   const SceneSetup s = load(shared("avaframe_avaKot"));
-  EXPECT_TRUE(hasNote(s, "resistance.shp", "not yet applied"));
-  EXPECT_TRUE(hasNote(s, "dam.shp", "not applied"));
+  EXPECT_TRUE(hasNote(s, "resistance.shp", "not used"));
+  EXPECT_EQ(s.output.maps.peakFiles.simType, "null");
+  EXPECT_EQ(dynamic_cast<const ResistedLaw*>(s.settings.terrainLaw.get()), nullptr);
+  // resistance = true: AvaFrame's res, the areas a drag region of the terrain law (cResH 0.01
+  // inside them, 0 outside: checked where the region field is read).
+  const SceneSetup r = load(shared("avaframe_avaKot"), {"avaframe.resistance=true"});
+  EXPECT_TRUE(hasNote(r, "resistance.shp", "applied, drag cResH 0.0100"));
+  EXPECT_EQ(r.output.maps.peakFiles.simType, "res");
+  ASSERT_NE(dynamic_cast<const ResistedLaw*>(r.settings.terrainLaw.get()), nullptr);
+  EXPECT_EQ(r.settings.terrainLaw->parameterNames().back(), "resistance");
+  EXPECT_NE(r.settings.terrainParameters, nullptr);
+  EXPECT_NE(errorOf([&] { load(shared("avaframe_avaWog"), {"avaframe.resistance=true"}); }).find("Inputs/RES: no resistance"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { load(shared("avaframe_avaKot"), {"avaframe.resistance_coefficient=0.02"}); })
+                .find("needs resistance = true"),
+            std::string::npos);
 }
 
 TEST(AvaFrameInput, IdealisedFoldersLoadWithAThicknessFromTheScene) {

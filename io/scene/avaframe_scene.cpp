@@ -36,6 +36,38 @@ ConfigTable* childTable(ConfigTable& parent, const std::string& key) {
   return child.get();
 }
 
+/// AvaFrame's `res` simulation type: the RES/ areas as a [[terrain.regions]] entry with the drag
+/// cResH (engine/resistance_law.h), when `resistance = true`.
+void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTable& ter, std::vector<std::string>& notes) {
+  const bool on = av.boolean("resistance", false);
+  const double cRes = av.positive("resistance_coefficient", 0.01); // AvaFrame's cResH default (1/m)
+  if (!on) {
+    if (av.has("resistance_coefficient")) av.fail("resistance_coefficient", "needs resistance = true");
+    if (folder.resistance)
+      notes.push_back(folder.resistance->path + ": resistance areas not used (set avaframe.resistance = true to apply "
+                                                "them: AvaFrame's res simulation type)");
+    return;
+  }
+  if (!folder.resistance) av.fail("resistance", folder.dir + "/Inputs/RES: no resistance shapefile");
+  auto region = std::make_shared<ConfigTable>(ter.file(), ter.keyPath("regions"), ter.line());
+  region->set("polygon", text(std::filesystem::absolute(folder.resistance->path).string()));
+  region->set("resistance", number(cRes));
+  ConfigValue::Array regions;
+  if (ter.values().count("regions")) {
+    const ConfigValue& own = ter.values().at("regions");
+    if (!own.isArray()) ter.fail("regions", "expected an array of tables ([[terrain.regions]])");
+    regions = std::get<ConfigValue::Array>(own.data);
+  }
+  ConfigValue v;
+  v.data = region;
+  regions.insert(regions.begin(), v); // the scene's own regions after it: they win where they overlap
+  ConfigValue all;
+  all.data = regions;
+  ter.set("regions", all);
+  notes.push_back(folder.resistance->path + ": resistance areas applied, drag cResH " + std::to_string(cRes).substr(0, 6) +
+                  " 1/m (AvaFrame's res; no detrainment)");
+}
+
 std::vector<std::string> materialNames(const ConfigTable& root) {
   std::vector<std::string> names;
   if (!root.values().count("materials") || !root.values().at("materials").isArray()) return names;
@@ -146,6 +178,7 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
     notes.push_back(folder.entrainment->path + ": entrainment areas not used (set avaframe.entrainment_material to "
                                                "add them as erodible covers)");
   }
+  addResistance(*av, folder, *ter, notes);
   if (root.values().count("bodies")) {
     const ConfigValue& own = root.values().at("bodies");
     if (!own.isArray()) root.fail("bodies", "expected an array of tables ([[bodies]])");

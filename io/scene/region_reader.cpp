@@ -1,5 +1,7 @@
 #include "io/scene/region_reader.h"
 
+#include "engine/resistance_law.h"
+#include "io/scene/contact_law_table.h"
 #include "io/terrain/dem_raster.h"
 #include "io/terrain/polygon_set.h"
 #include "io/terrain/terrain_loader.h"
@@ -141,6 +143,16 @@ std::shared_ptr<const ParameterField> readTerrainRegions(const ConfigTable& terr
   std::vector<float> defaults;
   for (double v : law.parameterValues()) defaults.push_back(float(v));
   return std::make_shared<RegionField>(std::move(defaults), std::move(layers), settings.origin, settings.dx);
+}
+
+void readTerrainLaw(const ConfigTable& terrain, SimulationSettings& settings, const std::string& demCrs) {
+  settings.terrainLaw = readContactLaw(terrain, "boundary", "friction", "", false);
+  for (const ConfigTable* t : terrain.tables("regions"))
+    if (t->has("resistance")) {
+      settings.terrainLaw = std::make_shared<ResistedLaw>(settings.terrainLaw);
+      break;
+    }
+  settings.terrainParameters = readTerrainRegions(terrain, *settings.terrainLaw, settings, demCrs);
 }
 
 } // namespace talus

@@ -2,6 +2,7 @@
 // in order (a later region wins where they overlap), as AvaFrame's spatial Voellmy does:
 //   { polygon = "forest.shp", friction = 0.3, xi = 1500 }   inside the polygons
 //   { raster = "xi.tif", parameter = "xi" }                 a raster GDAL reads, bilinear
+//   { polygon = "forest.shp", resistance = 0.01 }           a forest's drag (any law)
 #pragma once
 
 #include "engine/contact_law.h"
@@ -20,5 +21,11 @@ namespace talus {
 /// negative values inside it, a parameter the law does not have.
 std::shared_ptr<const ParameterField> readTerrainRegions(const ConfigTable& terrain, const ContactLaw& law,
                                                          const SimulationSettings& settings, const std::string& demCrs);
+
+/// settings.terrainLaw ([terrain] boundary, default Coulomb `friction`) and
+/// settings.terrainParameters (its regions). A region that sets `resistance` (a forest's drag,
+/// cResH in 1/m) wraps the law in engine/resistance_law.h's ResistedLaw; without one the law is
+/// as read. Throws InputError as readContactLaw and readTerrainRegions.
+void readTerrainLaw(const ConfigTable& terrain, SimulationSettings& settings, const std::string& demCrs);
 
 } // namespace talus

@@ -1,5 +1,6 @@
 #include "io/scene/scene.h"
 
+#include "engine/resistance_law.h"
 #include "engine/sdf_solids.h"
 #include "io/terrain/shape_reader.h"
 #include "io/scene/body_seeding.h"
@@ -115,8 +116,7 @@ void readTerrain(const ConfigTable& root, SceneSetup& s) {
   const ConfigTable* ter = root.table("terrain");
   if (!ter) return;
   s.settings.terrain = loadTerrain(*ter, s.settings);
-  s.settings.terrainLaw = readContactLaw(*ter, "boundary", "friction", "", false);
-  s.settings.terrainParameters = readTerrainRegions(*ter, *s.settings.terrainLaw, s.settings, "");
+  readTerrainLaw(*ter, s.settings, "");
 }
 
 /// A DEM terrain: the ground edits of the terrain bodies (releases from a post-event DEM are
@@ -164,8 +164,7 @@ void buildDemTerrain(const ConfigTable& ter, const DemTerrainInput& dem, const s
   for (const TerrainBody* b : bodies)
     if (auto solid = b->fixedSolid()) parts.push_back(solid);
   s.settings.terrain = parts.size() == 1 ? parts[0] : std::make_shared<UnionSdf>(parts);
-  s.settings.terrainLaw = readContactLaw(ter, "boundary", "friction", "", false);
-  s.settings.terrainParameters = readTerrainRegions(ter, *s.settings.terrainLaw, s.settings, dem.raw->grid.crsWkt);
+  readTerrainLaw(ter, s.settings, dem.raw->grid.crsWkt);
   s.dem = ground;
 }
 
@@ -311,6 +310,8 @@ void readOutput(const ConfigTable& root, SceneSetup& s) {
     }
   for (const auto& b : s.bodies)
     if (b.kind == "layer") pf.simType = "ent";
+  if (dynamic_cast<const ResistedLaw*>(s.settings.terrainLaw.get())) // resistance areas: AvaFrame's res
+    pf.simType = pf.simType == "ent" ? "entres" : "res";
   pf.simHash = fnv1aHex(root.canonicalText()).substr(0, 10);
   // The film: on by default where there is terrain to show it over, a hundred frames.
   AnimationSettings& an = s.output.maps.animation;

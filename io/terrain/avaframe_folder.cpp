@@ -231,7 +231,7 @@ AvaFrameFolder readAvaFrameFolder(const std::string& dirIn) {
   if (auto r = single(in / "RES")) {
     f.resistance = readAreas(*r);
     f.notes.push_back(f.resistance->path + ": " + std::to_string(f.resistance->features.size()) +
-                      " resistance area(s) read, not yet applied (basal-law regions are not in Talus yet)");
+                      " resistance area(s) read");
   }
   if (auto s = single(in / "SECREL")) {
     f.secondaryRelease = readAreas(*s);
