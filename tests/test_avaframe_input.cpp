@@ -138,6 +138,26 @@ TEST(AvaFrameInput, ResistanceAreasAreAppliedAsAvaFramesResSimulationWhenAsked) 
             std::string::npos);
 }
 
+TEST(AvaFrameInput, TheDamLineBecomesADamStructureWhenAsked) {
+  if (test::sharedDir().empty()) GTEST_SKIP() << "../shared (AvaFrame avaKot data) not found";
+  EXPECT_TRUE(hasNote(load(shared("avaframe_avaKot")), "dam.shp", "not used"));
+  const SceneSetup s = load(shared("avaframe_avaKot"), {"avaframe.dams=true"});
+  ASSERT_EQ(s.settings.structures.size(), 1u);
+  EXPECT_EQ(s.settings.structures[0].name, "dam");
+  // avaKot's DAM/dam.shp: its second vertex (178397.855, 377753.004) has the crest at 1140 m
+  // (z), 9.4 m above the DEM there; flanks at the file's slope, 60 degrees; crest dx (10 m) wide.
+  const Sdf& dam = *s.settings.structures[0].geometry;
+  const Vec3d o = s.settings.origin;
+  EXPECT_NEAR(dam.distance(Vec3d(178397.855463071, 377753.003561389, 1141) - o), 1.0, 1e-6) << "1 m above the crest";
+  EXPECT_NEAR(dam.distance(Vec3d(178397.855463071, 377753.003561389, 1138) - o), -2.0, 1e-6) << "inside, 2 m below";
+  // 10 m across the line (it runs north there): 5 m beyond the crest's edge, on the 60-degree
+  // flank 5 tan 60 = 8.66 m below the crest; 1131.34 m is on the flank, above it is outside.
+  EXPECT_NEAR(dam.distance(Vec3d(178407.855463071, 377753.003561389, 1140 - 5 * std::tan(M_PI / 3)) - o), 0.0, 1e-6);
+  EXPECT_GT(dam.distance(Vec3d(178407.855463071, 377753.003561389, 1139) - o), 0.0);
+  EXPECT_NE(errorOf([&] { load(shared("avaframe_avaWog"), {"avaframe.dams=true"}); }).find("Inputs/DAM: no dam"),
+            std::string::npos);
+}
+
 TEST(AvaFrameInput, IdealisedFoldersLoadWithAThicknessFromTheScene) {
   if (test::sharedDir().empty()) GTEST_SKIP() << "../shared (AvaFrame idealised data) not found";
   // Their releases carry no thickness (AvaFrame's configuration gives relTh): so must the scene.

@@ -68,6 +68,33 @@ void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTa
                   " 1/m (AvaFrame's res; no detrainment)");
 }
 
+/// AvaFrame's DAM/ lines as a [[structures]] dam (engine/dam_sdf.h), when `dams = true`.
+void addDams(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTable& root, std::vector<std::string>& notes) {
+  if (!av.boolean("dams", false)) {
+    if (!folder.damFile.empty())
+      notes.push_back(folder.damFile + ": dam line not used (set avaframe.dams = true to build it as a [[structures]] dam)");
+    return;
+  }
+  if (folder.damFile.empty()) av.fail("dams", folder.dir + "/Inputs/DAM: no dam shapefile");
+  auto dam = std::make_shared<ConfigTable>(root.file(), root.keyPath("structures"), root.line());
+  dam->set("name", text("dam"));
+  dam->set("shape", text("dam"));
+  dam->set("line_file", text(std::filesystem::absolute(folder.damFile).string()));
+  ConfigValue::Array all;
+  if (root.values().count("structures")) {
+    const ConfigValue& own = root.values().at("structures");
+    if (!own.isArray()) root.fail("structures", "expected an array of tables ([[structures]])");
+    all = std::get<ConfigValue::Array>(own.data);
+  }
+  ConfigValue v;
+  v.data = dam;
+  all.push_back(v);
+  ConfigValue list;
+  list.data = all;
+  root.set("structures", list);
+  notes.push_back(folder.damFile + ": dam line built as the structure 'dam' (crest from the line's z, flanks at its slope)");
+}
+
 std::vector<std::string> materialNames(const ConfigTable& root) {
   std::vector<std::string> names;
   if (!root.values().count("materials") || !root.values().at("materials").isArray()) return names;
@@ -179,6 +206,7 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
                                                "add them as erodible covers)");
   }
   addResistance(*av, folder, *ter, notes);
+  addDams(*av, folder, root, notes);
   if (root.values().count("bodies")) {
     const ConfigValue& own = root.values().at("bodies");
     if (!own.isArray()) root.fail("bodies", "expected an array of tables ([[bodies]])");

@@ -1,7 +1,9 @@
 #include "io/scene/structure_reader.h"
 
+#include "engine/dam_sdf.h"
 #include "engine/sdf_solids.h"
 #include "io/scene/contact_law_table.h"
+#include "io/terrain/line_features.h"
 #include "io/terrain/shape_reader.h"
 #include "io/terrain/terrain_loader.h"
 #include "io/terrain/vdb_level_set.h"
@@ -26,9 +28,51 @@ double halfThickness(const Shape& shape, double dx) {
   return deepest;
 }
 
+/// shape = "dam": `line = [[x, y, crest], ...]` (world) or `line_file` (a vector file whose line
+/// vertices carry the crest as z: AvaFrame's DAM/), `slope` (degrees; default the file's `slope`
+/// attribute), `crest_width` (m, default dx). Down to below the domain: the terrain hides the base.
+std::shared_ptr<const Sdf> readDam(const ConfigTable& t, const SimulationSettings& s, const std::string& label) {
+  if (t.has("line") == t.has("line_file")) t.fail("line", "give either 'line' ([[x, y, crest], ...]) or 'line_file'");
+  std::vector<LineFeature> lines;
+  if (t.has("line_file")) {
+    lines = readLineFeatures(resolveScenePath(t.file(), t.string("line_file")), "slope");
+  } else {
+    const auto& arr = std::get<ConfigValue::Array>(t.values().at("line").data);
+    LineFeature f;
+    for (size_t i = 0; i < arr.size(); ++i) {
+      if (!arr[i].isArray() || std::get<ConfigValue::Array>(arr[i].data).size() != 3)
+        t.fail("line", "expected [[x, y, crest], ...]: three numbers per vertex");
+      const auto& v = std::get<ConfigValue::Array>(arr[i].data);
+      for (const auto& c : v)
+        if (!c.isNumber()) t.fail("line", "expected [[x, y, crest], ...]: three numbers per vertex");
+      f.points.emplace_back(std::get<double>(v[0].data), std::get<double>(v[1].data), std::get<double>(v[2].data));
+    }
+    lines.push_back(f);
+  }
+  const double width = t.positive("crest_width", s.dx, true);
+  const double base = s.domain.min.z() - s.dx; // below the domain: the terrain hides the dam's base
+  std::vector<std::shared_ptr<const Sdf>> parts;
+  for (size_t k = 0; k < lines.size(); ++k) {
+    const double slope = t.has("slope") ? t.inRange("slope", 60, 0, 90, true) : lines[k].value;
+    if (!(slope > 0 && slope <= 90)) t.fail("slope", "give the dam's flank slope in degrees (0, 90] (the line file has none)");
+    std::vector<DamSdf::Vertex> v;
+    for (const auto& p : lines[k].points) {
+      if (!std::isfinite(p.z())) t.fail("line_file", "the line's vertices carry no elevation (the crest, as z)");
+      v.push_back({p.x() - s.origin.x(), p.y() - s.origin.y(), p.z() - s.origin.z(), base});
+    }
+    try {
+      parts.push_back(std::make_shared<DamSdf>(v, slope, width, "dam '" + label + "'"));
+    } catch (const std::invalid_argument& e) {
+      t.fail(t.has("line") ? "line" : "line_file", e.what());
+    }
+  }
+  return parts.size() == 1 ? parts[0] : std::make_shared<UnionSdf>(parts);
+}
+
 std::shared_ptr<const Sdf> readGeometry(const ConfigTable& t, const SimulationSettings& s, std::vector<std::string>& notes,
                                         const std::string& label) {
-  const std::string kind = t.choice("shape", "", {"box", "cylinder", "sphere", "level_set"});
+  const std::string kind = t.choice("shape", "", {"box", "cylinder", "sphere", "level_set", "dam"});
+  if (kind == "dam") return readDam(t, s, label);
   if (kind == "level_set") {
     const std::string file = resolveScenePath(t.file(), t.string("file"));
     if (!std::filesystem::is_regular_file(file)) t.fail("file", "file not found: " + file);

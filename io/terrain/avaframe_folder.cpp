@@ -237,7 +237,7 @@ AvaFrameFolder readAvaFrameFolder(const std::string& dirIn) {
     f.secondaryRelease = readAreas(*s);
     f.notes.push_back(f.secondaryRelease->path + ": secondary release areas read, not applied");
   }
-  if (auto d = single(in / "DAM")) f.notes.push_back(d->string() + ": dam line, not applied (a [[structures]] wall is the Talus way)");
+  if (auto d = single(in / "DAM")) f.damFile = d->string();
   if (fs::is_directory(in / "RASTERS") && !fs::is_empty(in / "RASTERS"))
     f.notes.push_back((in / "RASTERS").string() + ": friction rasters (spatialVoellmy), not applied");
 

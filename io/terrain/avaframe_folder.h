@@ -43,6 +43,7 @@ struct AvaFrameFolder {
   std::string demCrsWkt;  ///< the DEM's own CRS ("" when it has none, as a .asc without .prj)
   std::vector<AvaFrameAreas> releases;
   std::optional<AvaFrameAreas> entrainment, resistance, secondaryRelease;
+  std::string damFile; ///< DAM/<file>.shp: dam lines (vertex z = crest, `slope` attribute), or ""
   std::string thalwegFile;                  ///< Inputs/LINES/path_aimec.shp, or ""
   std::vector<Eigen::Vector2d> thalweg;     ///< its vertices (world, m)
   std::optional<Eigen::Vector2d> splitPoint; ///< Inputs/POINTS/splitPoint.shp
