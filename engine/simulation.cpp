@@ -205,6 +205,7 @@ double Simulation::step(double dtCap) {
   maxSpeed_ = stats.maxSpeed;
   for (auto* g : groupPtrs_) g->afterStep();
   if (bed_) bed_->release(groupPtrs_); // pools of eroded mass become particles
+  for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_); // secondary releases, inflows
   if (ranks_) reduceGroupMinima();
   checkFinite(stats.nonFinite);
   {
@@ -408,6 +409,7 @@ void Simulation::save(StateArchive& a) const {
     groupPtrs_[i]->save(a, p);
   }
   if (bed_) bed_->save(a);
+  for (size_t i = 0; i < settings_.sources.size(); ++i) settings_.sources[i]->save(a, "source" + std::to_string(i) + "/");
 }
 
 void Simulation::load(const StateArchive& a) {
@@ -432,6 +434,7 @@ void Simulation::load(const StateArchive& a) {
   initialMass_ = a.getValue<double>("initial_mass");
   a.getVector("mass_removed", massRemoved_);
   if (bed_) bed_->load(a);
+  for (size_t i = 0; i < settings_.sources.size(); ++i) settings_.sources[i]->load(a, "source" + std::to_string(i) + "/");
   if (massRemoved_.size() != groupPtrs_.size()) throw std::runtime_error("mass ledger does not fit the materials");
   // A run only ever holds particles inside the domain (culling keeps them there) with positive
   // mass; binning a position far outside would overflow the block coordinates.

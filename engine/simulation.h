@@ -5,6 +5,7 @@
 #include "engine/flow_thickness.h"
 #include "engine/domain_decomposition.h"
 #include "engine/erodible_bed.h"
+#include "engine/particle_source.h"
 #include "engine/grid_update.h"
 #include "engine/halo_exchange.h"
 #include "engine/periodic.h"
@@ -84,6 +85,9 @@ struct SimulationSettings {
   /// Erodible covers thinner than a cell, as fields on the terrain (engine/erodible_bed.h); the
   /// Simulation moves them into bed(). One process, no periodic axes.
   std::vector<ErodibleCover> covers;
+  /// Where particles enter after the start: secondary releases, inflow hydrographs
+  /// (engine/particle_source.h), called in this order after every step. One process.
+  std::vector<std::shared_ptr<ParticleSource>> sources;
   /// Periodic axes (the domain's extent along them a multiple of 8 dx; no faces there).
   std::array<bool, 3> periodic{false, false, false};
 };
@@ -161,6 +165,8 @@ public:
   const std::vector<ColliderLoad>& colliderLoads() const { return loads_; }
   /// The erodible covers on the terrain, or null when the scene has none.
   const ErodibleBed* bed() const { return bed_.get(); }
+  /// The particle sources (secondary releases, inflows) as the scene gave them.
+  const std::vector<std::shared_ptr<ParticleSource>>& sources() const { return settings_.sources; }
 
   /// Per material group (in groups() order): mass, kinetic energy and gravitational potential
   /// energy -m g.x about the local origin, summed in fixed chunks (the same at any thread count).

@@ -72,6 +72,8 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
   if (bed_)
     throw std::invalid_argument("erodible covers thinner than their field_below do not run on several ranks yet (run "
                                 "without mpirun, or set field_below = 0 on the body for a cover of particles)");
+  if (!settings_.sources.empty())
+    throw std::invalid_argument("secondary releases and inflows do not run on several ranks yet (run without mpirun)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
   if (!seedIndex) {
     // Every rank holds every particle here: the same binning everywhere gives the same ranges.

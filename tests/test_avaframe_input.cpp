@@ -2,6 +2,7 @@
 // the avaWog, avaKot and idealised folders of ../shared (skipped without it), and folders built
 // here to break one rule at a time.
 #include "engine/resistance_law.h"
+#include "engine/secondary_release.h"
 #include "io/scene/avaframe_scene.h"
 #include "io/scene/scene.h"
 #include "io/terrain/avaframe_folder.h"
@@ -245,4 +246,23 @@ TEST(AvaFrameInput, EachBrokenRuleIsOneLineNamingTheFile) {
   // The scene brings its own DEM as well: which one would it be?
   const std::string e6 = errorOf([&] { load(ok, {"terrain.dem=\"x.tif\""}); });
   EXPECT_NE(e6.find("brings the DEM"), std::string::npos) << e6;
+}
+
+TEST(AvaFrameInput, SecondaryReleaseAreasAreHeldUntilTheFlowReachesThem) {
+  const std::string dir = makeFolder("secrel");
+  fs::create_directories(dir + "/Inputs/SECREL");
+  test::writePolygons(dir + "/Inputs/SECREL/secB.shp", {{test::rectangleRing(2600100, 1200020, 2600140, 1200060), 1.0}},
+                      "EPSG:2056");
+  EXPECT_TRUE(hasNote(load(dir), "secB.shp", "not used"));
+  const SceneSetup s = load(dir, {"avaframe.secondary_release=true"});
+  ASSERT_EQ(s.settings.sources.size(), 1u);
+  const auto* held = dynamic_cast<const SecondaryReleases*>(s.settings.sources[0].get());
+  ASSERT_NE(held, nullptr);
+  ASSERT_EQ(held->bodies().size(), 1u);
+  EXPECT_EQ(held->bodies()[0].name, "secB");
+  // 5 cm of the release material's weight per area (AvaFrame releases at the first particle).
+  EXPECT_NEAR(held->bodies()[0].triggerMassPerArea, 0.05 * s.groups[0]->density(), 1e-9);
+  EXPECT_FALSE(held->bodies()[0].x.empty());
+  EXPECT_NE(errorOf([&] { load(makeFolder("nosecrel"), {"avaframe.secondary_release=true"}); }).find("SECREL"),
+            std::string::npos);
 }

@@ -1,5 +1,7 @@
 #include "io/run/run_summary.h"
 
+#include "engine/inflow_source.h"
+#include "engine/secondary_release.h"
 #include "io/common/atomic_file.h"
 
 #include <cmath>
@@ -59,6 +61,21 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
         << ", \"mass_pooled\": " << num(bed->pooledMass(k)) << "}";
     j << "],\n";
   }
+  std::string held, inflows; // secondary releases (released when, null: still held) and inflows
+  for (const auto& src : sim.sources()) {
+    if (const auto* h = dynamic_cast<const SecondaryReleases*>(src.get()))
+      for (size_t b = 0; b < h->bodies().size(); ++b) {
+        const double t = h->releaseTime(b);
+        held += std::string(held.empty() ? "" : ", ") + "{\"name\": " + jsonString(h->bodies()[b].name) +
+                ", \"released_s\": " + (std::isnan(t) ? std::string("null") : num(t)) + "}";
+      }
+    if (const auto* f = dynamic_cast<const InflowSource*>(src.get()))
+      inflows += std::string(inflows.empty() ? "" : ", ") + "{\"name\": " + jsonString(f->spec().name) +
+                 ", \"volume_m3\": " + num(f->emittedVolume()) + ", \"hydrograph_m3\": " +
+                 num(f->hydrographVolume(sim.time())) + "}";
+  }
+  if (!held.empty()) j << "  \"secondary_releases\": [" << held << "],\n";
+  if (!inflows.empty()) j << "  \"inflows\": [" << inflows << "],\n";
   j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
   j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";
   j << "  \"notes\": [";

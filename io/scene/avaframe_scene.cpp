@@ -191,6 +191,18 @@ void expandAvaFrame(ConfigTable& root, std::vector<std::string>& notes) {
     bodies.push_back(v);
   };
   add(areaBody(*rel, "REL", "release", relMaterial, relTh));
+  // AvaFrame's SECREL/: released when the flow reaches them (a trigger of a few centimetres of
+  // flow: AvaFrame releases them when its first particle enters).
+  if (av->boolean("secondary_release", false)) {
+    if (!folder.secondaryRelease) av->fail("secondary_release", folder.dir + "/Inputs/SECREL: no secondary release shapefile");
+    auto sec = areaBody(*folder.secondaryRelease, "SECREL", "release", relMaterial,
+                        folder.secondaryRelease->thicknessField.empty() ? (std::isnan(relTh) ? 1.0 : relTh) : NAN);
+    sec->set("trigger_thickness", number(av->positive("secondary_trigger_thickness", 0.05)));
+    add(sec);
+  } else if (folder.secondaryRelease) {
+    notes.push_back(folder.secondaryRelease->path + ": secondary release areas not used (set avaframe.secondary_release = "
+                                                    "true to hold them until the flow reaches them)");
+  }
   if (!entMaterial.empty()) {
     // AvaFrame: thickness from the file, else entThIfMissingInShp = 0.3 m.
     if (std::isnan(entTh) && folder.entrainment->thicknessField.empty()) {

@@ -149,4 +149,20 @@ BodyReport seedTerrainBody(const TerrainBody& body, const HeightField& bed, cons
   return rep;
 }
 
+bool holdSecondaryRelease(const ConfigTable& t, const std::string& label, MaterialGroup& group, int position,
+                          size_t first, std::vector<HeldBody>& held) {
+  if (!t.has("trigger_thickness")) return false;
+  HeldBody h;
+  h.name = label;
+  h.group = position;
+  h.triggerMassPerArea = group.density() * t.positive("trigger_thickness");
+  ParticleSet& P = group.particles;
+  h.x.assign(P.x.begin() + long(first), P.x.end());
+  h.mass.assign(P.mass.begin() + long(first), P.mass.end());
+  P.x.resize(first), P.v.resize(first), P.C.resize(first), P.tau.resize(first), P.mass.resize(first);
+  group.resizeState(first);
+  held.push_back(std::move(h));
+  return true;
+}
+
 } // namespace talus

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/material_group.h"
+#include "engine/secondary_release.h"
 #include "engine/shapes.h"
 #include "io/config/config_table.h"
 #include "io/scene/particle_seeding.h"
@@ -31,6 +32,13 @@ struct BodyReport {
 /// Below this many cells across its mean thickness a released body's peak flow heights lose
 /// accuracy (docs/convergence.md, "Thin releases").
 constexpr double kThinBodyCells = 1.0;
+
+/// A body with `trigger_thickness` (m) is a secondary release: its particles, seeded into `group`
+/// (at `position` among the scene's groups) from index `first` on, leave the group for a HeldBody (engine/secondary_release.h) that joins
+/// it when the flow over it weighs as much per area as that thickness of the body's material.
+/// Returns whether it held the body. Throws InputError on a trigger that is not positive.
+bool holdSecondaryRelease(const ConfigTable& t, const std::string& label, MaterialGroup& group, int position,
+                          size_t first, std::vector<HeldBody>& held);
 
 /// A warning for a terrain body thinner than kThinBodyCells at grid spacing dx, else "".
 std::string thinBodyNote(const BodyReport& body, double dx);

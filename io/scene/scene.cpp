@@ -5,6 +5,7 @@
 #include "io/terrain/shape_reader.h"
 #include "io/scene/body_seeding.h"
 #include "io/scene/erodible_cover_reader.h"
+#include "io/scene/inflow_reader.h"
 #include "io/common/resource_limits.h"
 #include "io/terrain/terrain_bodies.h"
 #include "io/terrain/terrain_loader.h"
@@ -252,6 +253,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   if (bed) bedField = std::make_unique<HeightField>(*bed);
   const DomainBox& dom = s.settings.domain;
   std::vector<const TerrainBody*> seeded;
+  std::vector<HeldBody> held; // secondary releases
   for (size_t i = 0; i < tables.size(); ++i) {
     const ConfigTable& t = *tables[i];
     const std::string label = t.string("name", "bodies[" + std::to_string(i) + "]");
@@ -260,6 +262,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       MaterialGroup* group = tb->kind() == TerrainBody::Kind::Fixed ? nullptr : findGroup(t, s, material);
       BodyReport rep;
       std::optional<ErodibleCover> cover;
+      const size_t first = group ? group->particles.size() : 0;
       try {
         if (group && s.settings.terrain)
           cover = readErodibleCover(*tb, *bedField, s.settings.origin, s.settings.dx,
@@ -278,6 +281,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       } else {
         seeded.push_back(tb);
         if (std::string note = thinBodyNote(rep, s.settings.dx); !note.empty()) s.notes.push_back(note);
+        if (group) holdSecondaryRelease(t, label, *group, groupPosition(s, group), first, held);
       }
       s.bodies.push_back(rep);
       continue;
@@ -286,6 +290,7 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
     MaterialGroup* group = findGroup(t, s, material);
     auto shape = readBodyShape(t, s.settings.origin);
     BodyReport rep;
+    const size_t first = group->particles.size();
     try {
       rep = seedShapeBody(t, *shape, bodySpec(t, spec), dom.min, dom.max, *group);
     } catch (const InputError& e) {
@@ -293,8 +298,10 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
       t.fail("", e.what()); // a limit: about this body
     }
     rep.label = label;
+    holdSecondaryRelease(t, label, *group, groupPosition(s, group), first, held);
     s.bodies.push_back(rep);
   }
+  if (!held.empty()) s.settings.sources.push_back(std::make_shared<SecondaryReleases>(std::move(held), s.settings.dx));
 }
 
 void readOutput(const ConfigTable& root, SceneSetup& s) {
@@ -338,6 +345,7 @@ SceneSetup buildScene(const ConfigTable& root, const SeedSlice& slice) {
   readStructures(root, s.settings, s.notes);
   readPanels(root, s.settings);
   readBodies(root, s, dem ? &*dem : nullptr, seed, jitter, jitterGiven);
+  readInflows(root, s); // on the terrain the bodies built
   readOutput(root, s);
   s.ensemble = readEnsembleSettings(root.table("ensemble"),
                                     s.output.paths.empty() ? std::vector<Eigen::Vector2d>{} : s.output.paths[0].points);

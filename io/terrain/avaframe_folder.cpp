@@ -235,7 +235,6 @@ AvaFrameFolder readAvaFrameFolder(const std::string& dirIn) {
   }
   if (auto s = single(in / "SECREL")) {
     f.secondaryRelease = readAreas(*s);
-    f.notes.push_back(f.secondaryRelease->path + ": secondary release areas read, not applied");
   }
   if (auto d = single(in / "DAM")) f.damFile = d->string();
   if (fs::is_directory(in / "RASTERS") && !fs::is_empty(in / "RASTERS"))
