@@ -198,4 +198,19 @@ RunReport runMembers(const std::vector<MemberJob>& jobs,
   return rep;
 }
 
+std::vector<std::string> memberArguments(const std::string& scene, const std::string& dir, int threads,
+                                         const std::vector<std::string>& sets, const std::vector<std::string>& overrides) {
+  std::vector<std::string> args{"run", scene, "--out", dir, "--threads", std::to_string(threads), "--quiet"};
+  for (const auto* list : {&sets, &overrides})
+    for (const auto& s : *list) args.insert(args.end(), {"--set", s});
+  return args;
+}
+
+std::vector<std::string> resumeArguments(const MemberJob& job) {
+  std::vector<std::string> args = job.args;
+  for (auto& a : args)
+    if (a == "--out") a = "--resume";
+  return args;
+}
+
 } // namespace talus::ensemble

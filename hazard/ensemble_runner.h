@@ -67,6 +67,13 @@ struct RunReport {
 RunReport runMembers(const std::vector<MemberJob>& jobs, const std::function<std::vector<std::string>(const MemberJob&)>& resumeArgs,
                      size_t concurrent, Launcher& launcher, FILE* progress, const std::function<bool()>& stop = {});
 
+/// A member's command line: `talus run SCENE --out DIR --threads T --quiet` with a `--set` for
+/// each of `sets`, then each of `overrides`.
+std::vector<std::string> memberArguments(const std::string& scene, const std::string& dir, int threads,
+                                         const std::vector<std::string>& sets, const std::vector<std::string>& overrides);
+/// The same member continued from its checkpoint: `--out` becomes `--resume`.
+std::vector<std::string> resumeArguments(const MemberJob& job);
+
 /// The path of the running program (/proc/self/exe).
 std::string selfProgram();
 

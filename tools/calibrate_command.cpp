@@ -99,19 +99,10 @@ int runCalibrateCommand(const CalibrateOptions& o) {
     for (const auto& r : reqs) {
       ensemble::MemberJob j;
       j.index = r.index, j.dir = r.dir;
-      j.args = {"run", sceneFile, "--out", j.dir, "--threads", std::to_string(o.threads), "--quiet"};
-      for (const auto& b : base) j.args.insert(j.args.end(), {"--set", b});
-      for (const auto& v : r.overrides) j.args.insert(j.args.end(), {"--set", v});
+      j.args = ensemble::memberArguments(sceneFile, j.dir, o.threads, base, r.overrides);
       jobsList.push_back(j);
     }
-    const auto rep = ensemble::runMembers(
-        jobsList,
-        [](const ensemble::MemberJob& j) {
-          auto args = j.args; // continued from the member's checkpoint
-          for (auto& a : args)
-            if (a == "--out") a = "--resume";
-          return args;
-        },
+    const auto rep = ensemble::runMembers(jobsList, ensemble::resumeArguments, // killed members continue
         size_t(jobs), launcher, nullptr, [] { return stopSignalReceived() != 0; });
     return !rep.stopped;
   };

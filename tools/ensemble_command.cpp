@@ -101,9 +101,7 @@ int runEnsembleCommand(const EnsembleOptions& o) {
     MemberJob j;
     j.index = m;
     j.dir = (dir / memberName(m)).string();
-    j.args = {"run", sceneFile, "--out", j.dir, "--threads", std::to_string(o.threads), "--quiet"};
-    for (const auto& s : base) j.args.insert(j.args.end(), {"--set", s});
-    for (const auto& s : plan.overrides(m)) j.args.insert(j.args.end(), {"--set", s});
+    j.args = memberArguments(sceneFile, j.dir, o.threads, base, plan.overrides(m));
     members.push_back(j);
   }
   RunReport run;
@@ -113,14 +111,7 @@ int runEnsembleCommand(const EnsembleOptions& o) {
     // too (the terminal's process group, a batch job's processes) and stop at a checkpoint.
     RunSignals signals(/*announce=*/false);
     ProcessLauncher launcher(selfProgram());
-    run = runMembers(
-        members,
-        [](const MemberJob& j) {
-          MemberJob r = j; // the same command, continued from the member's checkpoint
-          for (size_t i = 0; i + 1 < r.args.size(); ++i)
-            if (r.args[i] == "--out") r.args[i] = "--resume";
-          return r.args;
-        },
+    run = runMembers(members, resumeArguments, // a killed member continues from its checkpoint
         size_t(jobs), launcher, stderr, [] { return stopSignalReceived() != 0; });
     stoppedBy = run.stopped ? stopSignalReceived() : 0;
   }

@@ -36,6 +36,22 @@ ConfigTable* childTable(ConfigTable& parent, const std::string& key) {
   return child.get();
 }
 
+/// Adds `table` to the array of tables `parent.key` (created when absent), first or last.
+void addTable(ConfigTable& parent, const std::string& key, std::shared_ptr<ConfigTable> table, bool first) {
+  ConfigValue::Array all;
+  if (parent.values().count(key)) {
+    const ConfigValue& own = parent.values().at(key);
+    if (!own.isArray()) parent.fail(key, "expected an array of tables ([[" + parent.keyPath(key) + "]])");
+    all = std::get<ConfigValue::Array>(own.data);
+  }
+  ConfigValue v;
+  v.data = std::move(table);
+  all.insert(first ? all.begin() : all.end(), v);
+  ConfigValue list;
+  list.data = all;
+  parent.set(key, list);
+}
+
 /// AvaFrame's `res` simulation type: the RES/ areas as a [[terrain.regions]] entry with the drag
 /// cResH (engine/resistance_law.h), when `resistance = true`.
 void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTable& ter, std::vector<std::string>& notes) {
@@ -52,18 +68,7 @@ void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTa
   auto region = std::make_shared<ConfigTable>(ter.file(), ter.keyPath("regions"), ter.line());
   region->set("polygon", text(std::filesystem::absolute(folder.resistance->path).string()));
   region->set("resistance", number(cRes));
-  ConfigValue::Array regions;
-  if (ter.values().count("regions")) {
-    const ConfigValue& own = ter.values().at("regions");
-    if (!own.isArray()) ter.fail("regions", "expected an array of tables ([[terrain.regions]])");
-    regions = std::get<ConfigValue::Array>(own.data);
-  }
-  ConfigValue v;
-  v.data = region;
-  regions.insert(regions.begin(), v); // the scene's own regions after it: they win where they overlap
-  ConfigValue all;
-  all.data = regions;
-  ter.set("regions", all);
+  addTable(ter, "regions", region, true); // the scene's own regions after it: they win where they overlap
   notes.push_back(folder.resistance->path + ": resistance areas applied, drag cResH " + std::to_string(cRes).substr(0, 6) +
                   " 1/m (AvaFrame's res; no detrainment)");
 }
@@ -80,18 +85,7 @@ void addDams(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTable& r
   dam->set("name", text("dam"));
   dam->set("shape", text("dam"));
   dam->set("line_file", text(std::filesystem::absolute(folder.damFile).string()));
-  ConfigValue::Array all;
-  if (root.values().count("structures")) {
-    const ConfigValue& own = root.values().at("structures");
-    if (!own.isArray()) root.fail("structures", "expected an array of tables ([[structures]])");
-    all = std::get<ConfigValue::Array>(own.data);
-  }
-  ConfigValue v;
-  v.data = dam;
-  all.push_back(v);
-  ConfigValue list;
-  list.data = all;
-  root.set("structures", list);
+  addTable(root, "structures", dam, false);
   notes.push_back(folder.damFile + ": dam line built as the structure 'dam' (crest from the line's z, flanks at its slope)");
 }
 
