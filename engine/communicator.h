@@ -20,6 +20,9 @@ public:
   virtual uint64_t sumOf(uint64_t v) = 0;
   /// Collective: element-wise sums of n doubles over all ranks, into v on every rank.
   virtual void sum(double* v, size_t n) = 0;
+  /// Collective: element-wise minima of n doubles over all ranks (exact), into v on every rank.
+  /// A step merges what it needs into one call of each kind (a maximum as the minimum of -x).
+  virtual void minimum(double* v, size_t n) = 0;
   /// Collective: every rank's bytes, concatenated in rank order; `counts` gets each rank's size.
   virtual std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
   /// Collective: every rank's bytes, concatenated in rank order, on rank 0 only (empty elsewhere).
@@ -28,8 +31,10 @@ public:
   virtual std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) = 0;
   /// Bytes this rank has sent to other ranks so far (the halo, migration, gathers).
   uint64_t bytesSent = 0;
-  /// Wall seconds this rank has spent inside the calls above (waiting included).
+  /// Wall seconds this rank has spent inside the calls above (waiting included), and how many
+  /// calls it made.
   double seconds = 0;
+  uint64_t collectives = 0;
   /// Largest single MPI message: gathers beyond it (rank 0's view of 17.5 M particles is
   /// 2.4 GB, past MPI's int counts) travel in pieces. Smaller in tests.
   size_t maxMessageBytes = size_t(1) << 30;
@@ -44,6 +49,7 @@ public:
   double minOf(double v) override { return v; }
   uint64_t sumOf(uint64_t v) override { return v; }
   void sum(double*, size_t) override {}
+  void minimum(double*, size_t) override {}
   std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
     counts.assign(1, mine.size());
     return mine;

@@ -26,9 +26,10 @@ bool launchedAsRanks() {
 
 namespace {
 
+/// Times one collective call and counts it.
 class Stopwatch {
 public:
-  explicit Stopwatch(double& acc) : acc_(acc), t0_(std::chrono::steady_clock::now()) {}
+  Stopwatch(double& acc, uint64_t& calls) : acc_(acc), t0_(std::chrono::steady_clock::now()) { ++calls; }
   ~Stopwatch() { acc_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
 private:
   double& acc_;
@@ -51,17 +52,21 @@ public:
   double maxOf(double v) override { return reduce(v, MPI_MAX); }
   double minOf(double v) override { return reduce(v, MPI_MIN); }
   uint64_t sumOf(uint64_t v) override {
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     uint64_t out = 0;
     MPI_Allreduce(&v, &out, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
     return out;
   }
+  void minimum(double* v, size_t n) override {
+    Stopwatch t(seconds, collectives);
+    MPI_Allreduce(MPI_IN_PLACE, v, checkedCount(n), MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  }
   void sum(double* v, size_t n) override {
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     MPI_Allreduce(MPI_IN_PLACE, v, checkedCount(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
   }
   std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     const int n = checkedCount(mine.size());
     std::vector<int> c(static_cast<size_t>(size_), 0), displ(static_cast<size_t>(size_), 0);
     MPI_Allgather(&n, 1, MPI_INT, c.data(), 1, MPI_INT, MPI_COMM_WORLD);
@@ -79,7 +84,7 @@ public:
   }
   std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
     // Point to point in pieces of at most maxMessageBytes: the total may pass 2 GiB (int counts).
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     uint64_t n = mine.size();
     std::vector<uint64_t> c(static_cast<size_t>(size_), 0);
     MPI_Gather(&n, 1, MPI_UINT64_T, c.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
@@ -105,7 +110,7 @@ public:
     return out;
   }
   std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) override {
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     std::vector<uint64_t> out(static_cast<size_t>(size_)), in(static_cast<size_t>(size_));
     for (int r = 0; r < size_; ++r) out[size_t(r)] = send[size_t(r)].size();
     MPI_Alltoall(out.data(), 1, MPI_UINT64_T, in.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
@@ -134,7 +139,7 @@ public:
 
 private:
   double reduce(double v, MPI_Op op) {
-    Stopwatch t(seconds);
+    Stopwatch t(seconds, collectives);
     double out = 0;
     MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, op, MPI_COMM_WORLD);
     return out;

@@ -128,7 +128,11 @@ double Simulation::stableDt() const {
   double wave = maxWaveSpeed(), limit = std::numeric_limits<double>::infinity();
   for (const auto* g : groupPtrs_)
     if (g->size()) limit = std::min(limit, g->stableDtLimit(settings_.dx));
-  if (ranks_) wave = ranks_->comm().maxOf(wave), limit = ranks_->comm().minOf(limit);
+  if (ranks_) { // one collective: the largest wave speed as the smallest -wave
+    double v[2] = {-wave, limit};
+    ranks_->comm().minimum(v, 2);
+    wave = -v[0], limit = v[1];
+  }
   const double speed = wave + maxSpeed_;
   double dt = speed > 0 ? settings_.cfl * settings_.dx / speed : settings_.maxDt;
   // With no wave speed and no motion yet, gravity alone sets the scale: move at most cfl*dx.
@@ -194,19 +198,18 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.g2p);
     stats = gridToParticles(groupPtrs_, grid_, rdt, Real(settings_.flip));
   }
-  if (ranks_) {
-    ScopedTimer t(times_.halo);
-    stats.maxSpeed = Real(ranks_->comm().maxOf(double(stats.maxSpeed)));
-    stats.nonFinite = size_t(ranks_->comm().sumOf(stats.nonFinite));
-  }
-  particleSteps_ += globalParticleCount();
+  size_t stepped = particleCount();
   time_ += dt;
   ++steps_;
-  maxSpeed_ = stats.maxSpeed;
   for (auto* g : groupPtrs_) g->afterStep();
   if (bed_) bed_->release(groupPtrs_); // pools of eroded mass become particles
   for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_); // secondary releases, inflows
-  if (ranks_) reduceGroupMinima();
+  if (ranks_) { // the step's figures over the ranks, merged into two collectives
+    ScopedTimer t(times_.halo);
+    reduceStepFigures(stats, stepped);
+  }
+  particleSteps_ += stepped;
+  maxSpeed_ = stats.maxSpeed;
   checkFinite(stats.nonFinite);
   {
     ScopedTimer t(times_.cull);

@@ -210,7 +210,7 @@ private:
   void checkFinite(size_t nonFinite) const;
   void binAndBalance();
   void reduceLoads(Real dt);
-  void reduceGroupMinima();
+  void reduceStepFigures(G2PStats& stats, size_t& particles);
   void buildColumnsOnRanks();
   [[noreturn]] void checkFiniteOnRanks() const;
   std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty

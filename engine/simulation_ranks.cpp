@@ -196,12 +196,26 @@ void Simulation::buildColumnsOnRanks() {
   columns_.build(flows);
 }
 
-void Simulation::reduceGroupMinima() {
+void Simulation::reduceStepFigures(G2PStats& stats, size_t& particles) {
+  // Two collectives per step for everything the ranks must agree on after G2P: the minima (the
+  // largest speed as the smallest -speed, and each group's per-rank minima, e.g. the stiffest
+  // particle's time step) and the sums (non-finite particles, particles stepped). Sums of counts
+  // below 2^53 are exact in doubles.
+  std::vector<double> mins{-double(stats.maxSpeed)};
   for (auto* g : groupPtrs_) {
-    std::vector<double> v = g->rankMinima();
-    if (v.empty()) continue;
-    for (double& x : v) x = ranks_->comm().minOf(x);
-    g->setRankMinima(v);
+    const std::vector<double> v = g->rankMinima();
+    mins.insert(mins.end(), v.begin(), v.end());
+  }
+  ranks_->comm().minimum(mins.data(), mins.size());
+  double sums[2] = {double(stats.nonFinite), double(particles)};
+  ranks_->comm().sum(sums, 2);
+  stats.maxSpeed = Real(-mins[0]);
+  stats.nonFinite = size_t(sums[0]), particles = size_t(sums[1]);
+  size_t at = 1;
+  for (auto* g : groupPtrs_) {
+    const size_t n = g->rankMinima().size();
+    if (n) g->setRankMinima(std::vector<double>(mins.begin() + long(at), mins.begin() + long(at + n)));
+    at += n;
   }
 }
 

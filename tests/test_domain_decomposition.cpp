@@ -20,6 +20,7 @@ public:
   double minOf(double v) override { return v; }
   uint64_t sumOf(uint64_t v) override { return v; }
   void sum(double*, size_t) override {}
+  void minimum(double*, size_t) override {}
   std::vector<char> allGather(const std::vector<char>& m, std::vector<size_t>& c) override { return c = {m.size()}, m; }
   std::vector<char> gather(const std::vector<char>& m, std::vector<size_t>& c) override { return c = {m.size()}, m; }
   std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& s) override { return s; }
