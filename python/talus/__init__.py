@@ -9,6 +9,7 @@ arrays, and the analyses of a run's outputs (docs/python.md).
 """
 
 import csv
+import json
 import os
 import shutil
 import subprocess
@@ -20,7 +21,7 @@ from ._talus import (InputError, NumericalError, WriteError, Scene, read_map, re
 from ._talus import _Simulation
 
 __all__ = ["Scene", "Simulation", "InputError", "NumericalError", "WriteError", "read_map",
-           "read_series", "map_stats", "compare", "aimec", "run", "check", "terrain", "ensemble",
+           "read_series", "map_stats", "compare", "aimec", "run", "check", "terrain", "ensemble", "calibrate",
            "program"]
 
 
@@ -182,3 +183,34 @@ def ensemble(scene, vary, samples, out="ensemble", method="lhs", seed=None, thre
     files = sorted(os.path.relpath(os.path.join(d, n), out) for d, _, ns in os.walk(out) for n in ns
                    if not os.path.relpath(d, out).startswith("member_"))
     return {"out": out, "members": members, "files": files}
+
+
+def calibrate(scene, vary, observed, out="calibration", budget=20, weight=None, raster_result=None, screen=None,
+              tolerance=None, seed=None, threads=1, jobs=None, set=None):
+    """`talus calibrate`: the parameters (vary: {key: (low, high)}) whose run best matches an
+    observed event (observed: ["footprint=FILE", "runout=X,Y", "raster=FILE"]), by Morris
+    screening and a Gaussian-process search; resumable (a second call continues). Returns
+    result.json as a dict with 'out', 'members' (rows of calibration.csv as dicts) and
+    'calibrated_scene' (the scene file with the values written in, out/calibrated.toml)."""
+    args = ["calibrate", scene, "--out", out, "--budget", budget, "--threads", threads]
+    for key, (low, high) in vary.items():
+        args += ["--vary", f"{key}={low}:{high}"]
+    for o in observed:
+        args += ["--observed", o]
+    for kind, w in (weight or {}).items():
+        args += ["--weight", f"{kind}={w}"]
+    for flag, value in [("--raster-result", raster_result), ("--screen", screen), ("--tolerance", tolerance),
+                        ("--seed", seed), ("--jobs", jobs)]:
+        if value is not None:
+            args += [flag, value]
+    for s in set or []:
+        args += ["--set", s]
+    _command(args)
+    with open(os.path.join(out, "result.json")) as f:
+        result = json.load(f)
+    with open(os.path.join(out, "calibration.csv"), newline="") as f:
+        result["members"] = list(csv.DictReader(f))
+    result["out"] = out
+    result["calibrated_scene"] = os.path.join(out, "calibrated.toml")
+    return result
+

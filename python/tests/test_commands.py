@@ -35,3 +35,47 @@ def test_an_ensemble_returns_its_members(tmp_path, talus_exe):
     assert len(e["members"]) == 2
     assert "members.csv" in e["files"]
     assert any(f.startswith("maps/") for f in e["files"])
+
+
+def test_a_calibration_recovers_the_friction_of_a_synthetic_event(tmp_path, talus_exe):
+    # A 3 m slab on the synthetic slope at friction 0.3 (dx 10 m, a fraction of a second a run) is
+    # the event: its run-out point; the calibration over 0.15-0.5 must find it within 0.03.
+    scene = tmp_path / "slab.toml"
+    scene.write_text("""[simulation]
+dx = 10.0
+end_time = 20.0
+[terrain]
+synthetic = { kind = "slope_valley", cell_size = 20.0 }
+friction = 0.3
+[domain]
+walls = "open"
+[[materials]]
+name = "snow"
+preset = "snow"
+[[bodies]]
+name = "slab"
+kind = "release"
+material = "snow"
+bounds = [2600250.0, 1200350.0, 2600400.0, 1200450.0]
+thickness = 3.0
+[output]
+maps = true
+plots = false
+[ensemble]
+runout_result = "pft"
+runout_threshold = 0.1
+path = [[2600100.0, 1200400.0], [2601300.0, 1200400.0]]
+""")
+    truth = talus.run(str(scene), out=str(tmp_path / "truth"), set=["output.peak_files=true"])
+    pft = [f for f in os.listdir(tmp_path / "truth" / "peakFiles") if f.endswith("_pft.tif") or f.endswith("_pft.asc")]
+    assert pft
+    r = talus.calibrate(str(scene), {"terrain.friction": (0.15, 0.5)},
+                        [f"raster={tmp_path / 'truth' / 'peakFiles' / pft[0]}"], raster_result="pft",
+                        out=str(tmp_path / "cal"), budget=10, jobs=2)
+    (p,) = r["parameters"]
+    assert p["key"] == "terrain.friction"
+    assert p["value"] == pytest.approx(0.3, abs=0.03)
+    assert p["plausible_low"] <= 0.3 <= p["plausible_high"]
+    assert len(r["members"]) == 10
+    assert os.path.exists(r["calibrated_scene"])
+
