@@ -229,6 +229,9 @@ CalibrationResult calibrate(const std::string& dirIn, const CalibrationSettings&
     units.resize(std::min(units.size(), s.budget > screened ? s.budget - screened : 0));
     r.stopped = !loop.evaluate("initial", units);
   }
+  if (!r.stopped && bestOf(loop.members()) == loop.members().size())
+    throw std::runtime_error(dir.string() + ": no member completed (see " + ensemble::memberName(0) +
+                             "/run.log): nothing to search from");
   while (!r.stopped && loop.members().size() < s.budget) {
     const size_t n = std::min(s.batch, s.budget - loop.members().size());
     // Proposed anew even when resuming (deterministic, a fraction of a second): evaluate() then
