@@ -121,29 +121,31 @@ void ObservedEvent::prepare(double cellSize) {
   if (rasterFile_) raster_ = aimec::resample(t, *rasterFile_);
 }
 
-std::vector<float> ObservedEvent::runField(const std::string& runDir, const std::string& type) const {
+std::vector<float> ObservedEvent::runField(const std::string& runDir, const std::string& type) {
   const std::string f = ensemble::findPeakFile(runDir, type);
   if (f.empty()) return {};
-  std::vector<float> v = aimec::resample(*transform_, readKeepingNodata(f));
+  const DemRaster raster = readKeepingNodata(f);
+  prepare(raster.grid.cellSize); // the first run read fixes the path grid
+  std::vector<float> v = aimec::resample(*transform_, raster);
   for (auto& x : v) x = std::isfinite(x) ? x : 0.0f; // AIMEC: no data on the run's side = not reached
   return v;
 }
 
+std::vector<float> ObservedEvent::footprintOf(const std::vector<float>& run) const {
+  std::vector<float> indicator(run.size());
+  for (size_t p = 0; p < run.size(); ++p) indicator[p] = run[p] > settings_.runoutThreshold ? 1.0f : 0.0f;
+  return indicator;
+}
+
 LossTerms ObservedEvent::evaluate(const std::string& runDir) {
   LossTerms out;
-  {
-    const std::string f = ensemble::findPeakFile(runDir, settings_.runoutResult);
-    if (f.empty()) return out;
-    prepare(readKeepingNodata(f).grid.cellSize);
-  }
-  const aimec::Transform& t = *transform_;
   const std::vector<float> run = runField(runDir, settings_.runoutResult);
+  if (run.empty()) return out;
+  const aimec::Transform& t = *transform_;
   double total = 0;
   for (const auto& o : observations_) {
     if (o.kind == ObservedKind::Footprint) {
-      std::vector<float> indicator(run.size());
-      for (size_t p = 0; p < run.size(); ++p) indicator[p] = run[p] > settings_.runoutThreshold ? 1.0f : 0.0f;
-      const aimec::AreaComparison c = aimec::compareAreas(t, indicator, footprint_, 0.5);
+      const aimec::AreaComparison c = aimec::compareAreas(t, footprintOf(run), footprint_, 0.5);
       out.footprintFP = c.alphaFP, out.footprintFN = c.alphaFN;
       total += o.weight * (c.alphaFP + c.alphaFN);
     } else if (o.kind == ObservedKind::Runout) {
@@ -195,9 +197,7 @@ std::vector<uint8_t> ObservedEvent::classes(const std::string& runDir) {
   const std::vector<float> run = runField(runDir, footprint_.empty() ? rasterResult_ : settings_.runoutResult);
   if (run.empty()) return {};
   if (!footprint_.empty()) {
-    std::vector<float> indicator(run.size());
-    for (size_t p = 0; p < run.size(); ++p) indicator[p] = run[p] > settings_.runoutThreshold ? 1.0f : 0.0f;
-    return aimec::compareAreas(*transform_, indicator, footprint_, 0.5).classes;
+    return aimec::compareAreas(*transform_, footprintOf(run), footprint_, 0.5).classes;
   }
   return aimec::compareAreas(*transform_, run, raster_, settings_.runoutThreshold).classes;
 }

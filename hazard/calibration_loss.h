@@ -87,7 +87,10 @@ public:
 private:
   bool has(ObservedKind k) const;
   void prepare(double cellSize); ///< the transform and the observations on it
-  std::vector<float> runField(const std::string& runDir, const std::string& type) const;
+  /// The run's peak field of `type` on the path grid (no data: 0), {} without the file.
+  std::vector<float> runField(const std::string& runDir, const std::string& type);
+  /// 1 where the run's field exceeds the threshold, else 0: its footprint.
+  std::vector<float> footprintOf(const std::vector<float>& run) const;
 
   std::vector<Observation> observations_;
   EnsembleSettings settings_;
