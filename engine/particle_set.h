@@ -17,7 +17,7 @@ struct ParticleSet {
   std::vector<Vec3> v;    ///< velocity (m/s)
   std::vector<Mat3> C;    ///< APIC affine velocity matrix (1/s)
   std::vector<Sym3> tau;  ///< Kirchhoff stress used by the next P2G (Pa)
-  std::vector<Real> mass; ///< kg, constant per particle
+  std::vector<Real> mass; ///< kg, constant per particle but where a forest detrains it (engine/detrainment.h)
 
   size_t size() const { return x.size(); }
 

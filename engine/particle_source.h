@@ -1,8 +1,9 @@
-// Where particles enter a run after the start: secondary releases held until the flow reaches
-// them (engine/secondary_release.h), inflow hydrographs through a cross-section
-// (engine/inflow_source.h). The step calls every source once, after G2P, with the grid still
-// holding the step's node data; a source appends particles to material groups. A new kind of
-// source is one class and a line where the scene builds it (io/scene/scene.cpp).
+// Where particles enter (or leave) a run after the start: secondary releases held until the flow
+// reaches them (engine/secondary_release.h), inflow hydrographs through a cross-section
+// (engine/inflow_source.h), and, as a source of negative mass, a forest's detrainment
+// (engine/detrainment.h). The step calls every source once, after G2P, with the grid still
+// holding the step's node data; a source appends particles to material groups (or takes mass from
+// them). A new kind of source is one class and a line where the scene builds it.
 #pragma once
 
 #include "engine/material_group.h"

@@ -7,12 +7,17 @@
 // the units of the basal normal impulse the grid carries (engine/voellmy_law.h) the shear over
 // the normal stress rho g_n h is cResH u^2 / (g_n h), so a step slows the tangential speed left by
 // the base law to the root of u = u' - k u^2, k = cResH dvn / (g_n h), implicitly: it never
-// reverses a node. As AvaFrame, no drag where the flow is faster than kMaxSpeed or thicker than
-// kMaxThickness (it breaks the trees), nor where it is both slower than kMinSpeed and thinner than
-// kMinThickness (AvaFrame detrains there, which Talus does not: the mass stays in the flow).
+// reverses a node. Where the node's `detrainment` (detK, Pa) is positive, AvaFrame's thresholds
+// with detrainment apply (com1DFATools.updateResCoeffFields): the drag acts only where the flow is
+// faster than kMinSpeed and thicker than kMinThickness, and not where it is faster than kMaxSpeed
+// or thicker than kMaxThickness (it breaks the trees); below either lower threshold the forest
+// detrains instead (engine/detrainment.h). Where detK is 0 (AvaFrame's `detrainment = False`) the
+// drag acts at every speed and thickness, as AvaFrame's does then.
 //
-// The wrapper adds one parameter, `resistance`, after the base law's; it is 0 (no drag) outside
-// the regions. It exists only in scenes with resistance regions: others pay nothing.
+// The wrapper adds two parameters, `resistance` and `detrainment`, after the base law's; both are
+// 0 outside the regions (a region with `resistance` gets AvaFrame's detK = 5 Pa unless it says
+// otherwise, io/scene/region_reader.cpp). It exists only in scenes with resistance regions: others
+// pay nothing.
 #pragma once
 
 #include "engine/contact_law.h"
@@ -26,6 +31,7 @@ class ResistedLaw final : public ContactLaw {
 public:
   static constexpr double kMaxSpeed = 40, kMaxThickness = 10;  ///< AvaFrame's forestVMax, forestThMax
   static constexpr double kMinSpeed = 6, kMinThickness = 0.6;  ///< forestVMin, forestThMin
+  static constexpr double kDetrainment = 5; ///< AvaFrame's detK (Pa), a region's default
 
   explicit ResistedLaw(std::shared_ptr<const ContactLaw> base)
       : base_(std::move(base)), index_(base_->parameterNames().size()) {}
@@ -35,14 +41,24 @@ public:
   std::vector<std::string> parameterNames() const override {
     auto n = base_->parameterNames();
     n.push_back("resistance");
+    n.push_back("detrainment");
     return n;
   }
   std::vector<double> parameterValues() const override {
     auto v = base_->parameterValues();
     v.push_back(0.0);
+    v.push_back(0.0);
     return v;
   }
   const ContactLaw& base() const { return *base_; }
+  int resistanceIndex() const { return int(index_); }
+  int detrainmentIndex() const { return int(index_) + 1; }
+
+  /// Whether the drag acts on a flow of speed u and thickness h where detK is `detK`.
+  static bool drags(double u, double h, double detK) {
+    if (!(detK > 0)) return true;
+    return u > kMinSpeed && h > kMinThickness && u <= kMaxSpeed && h <= kMaxThickness;
+  }
 
   void apply(ContactNode* nodes, int count, const ContactStep& step) const override {
     Real dvn[kBlockNodes]; // the normal speed each node loses: its share of the basal normal impulse
@@ -55,7 +71,8 @@ public:
       if (!(cRes > 0) || !(dvn[i] > 0) || !(gn > 0) || !(h > 0)) continue;
       const Vec3 vn = c.v.dot(c.n) * c.n, vt = c.v - vn;
       const double u = double(vt.norm());
-      if (!(u > 0) || u > kMaxSpeed || h > kMaxThickness || (u < kMinSpeed && h < kMinThickness)) continue;
+      const double detK = double(c.params[index_ + 1]);
+      if (!(u > 0) || !drags(u, h, detK)) continue;
       const double k = cRes * double(dvn[i]) / (gn * h);
       const double slowed = 2 * u / (1 + std::sqrt(1 + 4 * k * u));
       c.v = vn + Real(slowed / u) * vt;
@@ -64,7 +81,7 @@ public:
 
 private:
   std::shared_ptr<const ContactLaw> base_;
-  size_t index_; ///< position of `resistance` in the node's parameters
+  size_t index_; ///< position of `resistance` in the node's parameters (`detrainment` follows)
 };
 
 } // namespace talus

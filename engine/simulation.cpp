@@ -203,7 +203,6 @@ double Simulation::step(double dtCap) {
   ++steps_;
   for (auto* g : groupPtrs_) g->afterStep();
   if (bed_) bed_->release(groupPtrs_); // pools of eroded mass become particles
-  for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_); // secondary releases, inflows
   if (ranks_) { // the step's figures over the ranks, merged into two collectives
     ScopedTimer t(times_.halo);
     reduceStepFigures(stats, stepped);
@@ -215,6 +214,9 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.cull);
     cullEscaped();
   }
+  // Secondary releases, inflows, detrainment: after the cull, which wraps periodic axes, so a
+  // source sees every particle inside the domain.
+  for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_);
   return dt;
 }
 

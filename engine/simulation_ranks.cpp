@@ -73,7 +73,8 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
     throw std::invalid_argument("erodible covers thinner than their field_below do not run on several ranks yet (run "
                                 "without mpirun, or set field_below = 0 on the body for a cover of particles)");
   if (!settings_.sources.empty())
-    throw std::invalid_argument("secondary releases and inflows do not run on several ranks yet (run without mpirun)");
+    throw std::invalid_argument("secondary releases, inflows and forests' detrainment do not run on several ranks yet (run without mpirun, "
+                                "or set detrainment = 0 in the resistance regions)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
   if (!seedIndex) {
     // Every rank holds every particle here: the same binning everywhere gives the same ranges.

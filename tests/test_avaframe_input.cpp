@@ -1,6 +1,7 @@
 // AvaFrame avalanche folders as scene input (io/terrain/avaframe_folder, io/scene/avaframe_scene):
 // the avaWog, avaKot and idealised folders of ../shared (skipped without it), and folders built
 // here to break one rule at a time.
+#include "engine/detrainment.h"
 #include "engine/resistance_law.h"
 #include "engine/secondary_release.h"
 #include "io/scene/avaframe_scene.h"
@@ -127,11 +128,23 @@ TEST(AvaFrameInput, ResistanceAreasAreAppliedAsAvaFramesResSimulationWhenAsked) 
   // resistance = true: AvaFrame's res, the areas a drag region of the terrain law (cResH 0.01
   // inside them, 0 outside: checked where the region field is read).
   const SceneSetup r = load(shared("avaframe_avaKot"), {"avaframe.resistance=true"});
-  EXPECT_TRUE(hasNote(r, "resistance.shp", "applied, drag cResH 0.0100"));
+  EXPECT_TRUE(hasNote(r, "resistance.shp", "applied, drag cResH 0.0100 1/m, detrainment detK 5.0000 Pa"));
   EXPECT_EQ(r.output.maps.peakFiles.simType, "res");
   ASSERT_NE(dynamic_cast<const ResistedLaw*>(r.settings.terrainLaw.get()), nullptr);
-  EXPECT_EQ(r.settings.terrainLaw->parameterNames().back(), "resistance");
+  const auto names = r.settings.terrainLaw->parameterNames();
+  EXPECT_EQ(names[names.size() - 2], "resistance");
+  EXPECT_EQ(names.back(), "detrainment");
   EXPECT_NE(r.settings.terrainParameters, nullptr);
+  // AvaFrame's detrainment = True by default: the detrainment phase is built; `false` drops it.
+  auto detrains = [](const SceneSetup& x) {
+    for (const auto& src : x.settings.sources)
+      if (dynamic_cast<const Detrainment*>(src.get())) return true;
+    return false;
+  };
+  EXPECT_TRUE(detrains(r));
+  const SceneSetup d = load(shared("avaframe_avaKot"), {"avaframe.resistance=true", "avaframe.detrainment=false"});
+  EXPECT_FALSE(detrains(d));
+  EXPECT_TRUE(hasNote(d, "resistance.shp", "no detrainment"));
   EXPECT_NE(errorOf([&] { load(shared("avaframe_avaWog"), {"avaframe.resistance=true"}); }).find("Inputs/RES: no resistance"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { load(shared("avaframe_avaKot"), {"avaframe.resistance_coefficient=0.02"}); })

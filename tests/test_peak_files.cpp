@@ -180,24 +180,24 @@ TEST(PeakFiles, TheMassLogAndConfigurationAreWhereAndAsAvaFrameReadsThem) {
   ASSERT_TRUE(in) << "mass_" << simName << ".txt";
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header, "time, current, entrained, detrained");
-  std::vector<std::array<double, 4>> rows;
+  EXPECT_EQ(header, "time, current, entrained, detrained, detrainedTotal, stopped");
+  std::vector<std::array<double, 6>> rows;
   for (std::string line; std::getline(in, line);) {
-    std::array<double, 4> r{};
-    ASSERT_EQ(std::sscanf(line.c_str(), "%lf, %lf, %lf, %lf", &r[0], &r[1], &r[2], &r[3]), 4) << line;
+    std::array<double, 6> r{};
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf, %lf, %lf, %lf, %lf, %lf", &r[0], &r[1], &r[2], &r[3], &r[4], &r[5]), 6) << line;
     rows.push_back(r);
   }
-  // 0.1 ... 0.5 s; the released mass throughout (nothing leaves the domain in 0.55 s), no entrainment.
+  // 0, 0.1 ... 0.5 s; the released mass throughout (nothing leaves the domain in 0.55 s), no
+  // entrainment, no forest.
   SceneSetup seeded = loadSceneString(kScene, "peak.toml");
   double mass = 0;
   for (const auto& g : seeded.groups)
     for (Real m : g->particles.mass) mass += double(m);
-  ASSERT_EQ(rows.size(), 5u);
+  ASSERT_EQ(rows.size(), 6u);
   for (size_t k = 0; k < rows.size(); ++k) {
-    EXPECT_NEAR(rows[k][0], 0.1 * double(k + 1), 1e-9);
+    EXPECT_NEAR(rows[k][0], 0.1 * double(k), 1e-9);
     EXPECT_NEAR(rows[k][1], mass, 1e-6 * mass) << "row " << k;
-    EXPECT_EQ(rows[k][2], 0.0);
-    EXPECT_EQ(rows[k][3], 0.0);
+    for (int c = 2; c < 6; ++c) EXPECT_EQ(rows[k][c], 0.0) << "row " << k << " column " << c;
   }
   // Python's configparser (as AvaFrame's cfgUtils) and numpy.loadtxt (as AIMEC) read them, in
   // Debian's /usr/bin/python3 with python3-numpy (tools/setup.sh installs both).
@@ -213,7 +213,7 @@ TEST(PeakFiles, TheMassLogAndConfigurationAreWhereAndAsAvaFrameReadsThem) {
   std::string out;
   while (fgets(buf, sizeof buf, p)) out += buf;
   ASSERT_EQ(pclose(p), 0) << out;
-  EXPECT_EQ(out, "0.29999999999999999 null 3 5 4\n");
+  EXPECT_EQ(out, "0.29999999999999999 null 3 6 6\n");
 }
 
 TEST(PeakFiles, Com1dfaGridIsTheMeshCom1dfaWritesAndValuesAreResampledOntoIt) {

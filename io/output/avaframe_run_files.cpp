@@ -1,5 +1,6 @@
 #include "io/output/avaframe_run_files.h"
 
+#include "engine/detrainment.h"
 #include "io/common/atomic_file.h"
 #include "io/output/peak_files.h"
 
@@ -22,7 +23,8 @@ AvaFrameRunFiles::AvaFrameRunFiles(std::string outDir, const OutputSettings& s, 
 void AvaFrameRunFiles::onStart(const Simulation& sim) {
   entrained_.onStart(sim);
   rows_.clear();
-  next_ = 1;
+  next_ = 0;
+  onStep(sim, 0); // the row at t = 0: the released mass (AIMEC's relMass)
 }
 
 void AvaFrameRunFiles::onStep(const Simulation& sim, double) {
@@ -44,7 +46,10 @@ void AvaFrameRunFiles::sample(const Simulation& sim, double t) {
       entrained += bed->entrainedMass(k);
       current += bed->pooledMass(k); // eroded, not yet a particle (those are counted above)
     }
-  rows_.insert(rows_.end(), {t, current, entrained});
+  double detrained = 0;
+  for (const auto& src : sim.sources())
+    if (const auto* d = dynamic_cast<const Detrainment*>(src.get())) detrained += d->detrainedMass();
+  rows_.insert(rows_.end(), {t, current, entrained, detrained});
 }
 
 std::string AvaFrameRunFiles::configuration() const {
@@ -84,10 +89,13 @@ void AvaFrameRunFiles::onFinish(const Simulation&, bool) {
   const std::string mass = "mass_" + simName_ + ".txt";
   writeAtomically((fs::path(outDir_) / mass).string(), [&](const std::string& path) {
     std::ofstream out(path);
-    out << "time, current, entrained, detrained\n";
-    char line[128];
-    for (size_t r = 0; r + 2 < rows_.size(); r += 3) {
-      std::snprintf(line, sizeof line, "%.2f,    %.6f,    %.6f,    %.6f\n", rows_[r], rows_[r + 1], rows_[r + 2], 0.0);
+    out << "time, current, entrained, detrained, detrainedTotal, stopped\n";
+    char line[192];
+    // entrained and detrained per row (AIMEC sums the entrained column), detrainedTotal so far.
+    for (size_t r = 0; r + 3 < rows_.size(); r += 4) {
+      const double entrained = rows_[r + 2] - (r ? rows_[r - 2] : 0.0), detrained = rows_[r + 3] - (r ? rows_[r - 1] : 0.0);
+      std::snprintf(line, sizeof line, "%.2f,    %.6f,    %.6f,    %.6f,    %.6f,    %.6f\n", rows_[r], rows_[r + 1],
+                    entrained, detrained, rows_[r + 3], 0.0);
       out << line;
     }
   });

@@ -1,17 +1,20 @@
 // What com1DFA writes beside its peak files, so that AvaFrame's tools read a Talus run as one of
 // theirs (ana3AIMEC's mass analysis, its ordering and filtering of runs by parameter):
 //
-//   mass_<simName>.txt                 "time, current, entrained, detrained", a row every 0.1 s
-//                                      (com1DFA's mass log, read by AIMEC with flagMass = True)
+//   mass_<simName>.txt                 "time, current, entrained, detrained, detrainedTotal,
+//                                      stopped", a row every 0.1 s from 0 (com1DFA's mass log,
+//                                      read by AIMEC with flagMass = True)
 //   configurationFiles/<simName>.ini   the run's configuration as cfgUtils reads it: [GENERAL]
 //                                      with com1DFA's names for what Talus has an equivalent of,
 //                                      [TALUS] with every scene key after overrides
 //
 // current: the mass of every particle in the domain except those of [output.maps] erodible
 // covers, plus what the covers lost (entrained), plus mass eroded from erodible fields that has
-// not yet become a particle; entrained: the covers' and fields' entrained mass; detrained: 0
-// (Talus deposits no mass out of the flow). A row is the state after the step that reaches its
-// time. Written with the peak files ([output] peak_files).
+// not yet become a particle; entrained: the covers' and fields' mass entrained since the last row
+// (AIMEC sums the column); detrained: what forests detrained since the last row
+// (engine/detrainment.h), detrainedTotal: since the start; stopped: 0 (Talus stops no particle).
+// A row is the state after the step that reaches its time. Written with the peak files
+// ([output] peak_files).
 #pragma once
 
 #include "io/output/entrained_mass.h"
@@ -42,8 +45,8 @@ private:
   std::vector<std::string> erodible_;
   double dx_, endTime_;
   EntrainedMassColumns entrained_;
-  std::vector<double> rows_; ///< time, current, entrained per row
-  long next_ = 1;            ///< the next row's time in intervals
+  std::vector<double> rows_; ///< time, current, entrained and detrained so far, per row
+  long next_ = 0;            ///< the next row's time in intervals
 };
 
 } // namespace talus

@@ -1,5 +1,6 @@
 #include "io/run/run_summary.h"
 
+#include "engine/detrainment.h"
 #include "engine/inflow_source.h"
 #include "engine/secondary_release.h"
 #include "io/common/atomic_file.h"
@@ -61,7 +62,7 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
         << ", \"mass_pooled\": " << num(bed->pooledMass(k)) << "}";
     j << "],\n";
   }
-  std::string held, inflows; // secondary releases (released when, null: still held) and inflows
+  std::string held, inflows, detrained; // secondary releases (released when, null: held), inflows, forests
   for (const auto& src : sim.sources()) {
     if (const auto* h = dynamic_cast<const SecondaryReleases*>(src.get()))
       for (size_t b = 0; b < h->bodies().size(); ++b) {
@@ -73,8 +74,13 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
       inflows += std::string(inflows.empty() ? "" : ", ") + "{\"name\": " + jsonString(f->spec().name) +
                  ", \"volume_m3\": " + num(f->emittedVolume()) + ", \"hydrograph_m3\": " +
                  num(f->hydrographVolume(sim.time())) + "}";
+    if (const auto* d = dynamic_cast<const Detrainment*>(src.get()))
+      for (const MaterialGroup* g : sim.groups())
+        detrained += std::string(detrained.empty() ? "" : ", ") + jsonString(g->name()) + ": " +
+                     num(d->detrainedMass(size_t(g->index())));
   }
   if (!held.empty()) j << "  \"secondary_releases\": [" << held << "],\n";
+  if (!detrained.empty()) j << "  \"detrained_kg\": {" << detrained << "},\n";
   if (!inflows.empty()) j << "  \"inflows\": [" << inflows << "],\n";
   j << "  \"max_speed\": " << num(sim.maxSpeed()) << ",\n";
   j << "  \"origin\": " << vec(sim.settings().origin) << ",\n";

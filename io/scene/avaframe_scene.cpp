@@ -1,5 +1,6 @@
 #include "io/scene/avaframe_scene.h"
 
+#include "engine/resistance_law.h"
 #include "io/terrain/avaframe_folder.h"
 #include "io/terrain/terrain_loader.h"
 
@@ -53,12 +54,16 @@ void addTable(ConfigTable& parent, const std::string& key, std::shared_ptr<Confi
 }
 
 /// AvaFrame's `res` simulation type: the RES/ areas as a [[terrain.regions]] entry with the drag
-/// cResH (engine/resistance_law.h), when `resistance = true`.
+/// cResH (engine/resistance_law.h) and the detrainment detK (engine/detrainment.h; off with
+/// `detrainment = false`, AvaFrame's switch), when `resistance = true`.
 void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTable& ter, std::vector<std::string>& notes) {
   const bool on = av.boolean("resistance", false);
   const double cRes = av.positive("resistance_coefficient", 0.01); // AvaFrame's cResH default (1/m)
+  const bool detrain = av.boolean("detrainment", true);               // AvaFrame's detrainment = True
+  const double detK = av.positive("detrainment_coefficient", ResistedLaw::kDetrainment); // its detK (Pa)
   if (!on) {
-    if (av.has("resistance_coefficient")) av.fail("resistance_coefficient", "needs resistance = true");
+    for (const char* k : {"resistance_coefficient", "detrainment", "detrainment_coefficient"})
+      if (av.has(k)) av.fail(k, "needs resistance = true");
     if (folder.resistance)
       notes.push_back(folder.resistance->path + ": resistance areas not used (set avaframe.resistance = true to apply "
                                                 "them: AvaFrame's res simulation type)");
@@ -68,9 +73,12 @@ void addResistance(const ConfigTable& av, const AvaFrameFolder& folder, ConfigTa
   auto region = std::make_shared<ConfigTable>(ter.file(), ter.keyPath("regions"), ter.line());
   region->set("polygon", text(std::filesystem::absolute(folder.resistance->path).string()));
   region->set("resistance", number(cRes));
+  if (!detrain && av.has("detrainment_coefficient")) av.fail("detrainment_coefficient", "needs detrainment = true");
+  region->set("detrainment", number(detrain ? detK : 0.0));
   addTable(ter, "regions", region, true); // the scene's own regions after it: they win where they overlap
   notes.push_back(folder.resistance->path + ": resistance areas applied, drag cResH " + std::to_string(cRes).substr(0, 6) +
-                  " 1/m (AvaFrame's res; no detrainment)");
+                  " 1/m" + (detrain ? ", detrainment detK " + std::to_string(detK).substr(0, 6) + " Pa" : ", no detrainment") +
+                  " (AvaFrame's res)");
 }
 
 /// AvaFrame's DAM/ lines as a [[structures]] dam (engine/dam_sdf.h), when `dams = true`.

@@ -1,5 +1,6 @@
 #include "io/scene/region_reader.h"
 
+#include "engine/detrainment.h"
 #include "engine/resistance_law.h"
 #include "io/scene/contact_law_table.h"
 #include "io/terrain/dem_raster.h"
@@ -122,6 +123,9 @@ Layer readPolygons(const ConfigTable& t, const std::vector<std::string>& names, 
     l.values.push_back({i, float(t.positive(key, 0, true))});
   }
   if (l.values.empty()) t.fail("polygon", "give the law's parameters inside it, e.g. friction = 0.3");
+  // A forest detrains as AvaFrame's does by default (detK 5 Pa) unless the region says otherwise.
+  if (const auto* r = dynamic_cast<const ResistedLaw*>(&law); r && t.has("resistance") && !t.has("detrainment"))
+    l.values.push_back({r->detrainmentIndex(), float(ResistedLaw::kDetrainment)});
   return l;
 }
 
@@ -153,6 +157,15 @@ void readTerrainLaw(const ConfigTable& terrain, SimulationSettings& settings, co
       break;
     }
   settings.terrainParameters = readTerrainRegions(terrain, *settings.terrainLaw, settings, demCrs);
+  const auto* resisted = dynamic_cast<const ResistedLaw*>(settings.terrainLaw.get());
+  if (!resisted) return;
+  bool detrains = false; // a forest that detrains anywhere: the phase runs (engine/detrainment.h)
+  for (const ConfigTable* t : terrain.tables("regions"))
+    detrains |= (t->has("resistance") && !t->has("detrainment")) || (t->has("detrainment") && t->number("detrainment") > 0) ||
+                t->string("parameter", "") == "detrainment";
+  if (detrains)
+    settings.sources.push_back(std::make_shared<Detrainment>(settings.terrainParameters, resisted->resistanceIndex(),
+                                                             resisted->detrainmentIndex(), settings.dx));
 }
 
 } // namespace talus
