@@ -12,6 +12,28 @@
 
 namespace talus::test {
 
+/// The plug's material and body: an elastic slab of thickness h over the 8 x 8-cell patch, moving
+/// at `speed` along x.
+inline std::string plugSlab(double dx, double h, double speed = 0) {
+  char buf[400];
+  std::snprintf(buf, sizeof buf, R"(
+[[materials]]
+name = "slab"
+model = "elastic"
+density = 300
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+[[bodies]]
+material = "slab"
+shape = "box"
+min = [0, 0, 0]
+max = [%g, %g, %g]
+velocity = [%g, 0, 0]
+)",
+                8 * dx, 8 * dx, h, speed);
+  return buf;
+}
+
 /// `regionKeys`: more keys of the resistance region (e.g. "detrainment = 0"); `speed`: the slab's
 /// initial speed down the slope (m/s). The polygon is written to `dir`/forest.geojson.
 inline std::string forestPlugScene(const std::string& dir, double h, double dx, double mu, double cRes, double ramp,
@@ -38,22 +60,10 @@ friction = %.12g
 polygon = "%s/forest.geojson"
 resistance = %g
 %s
-[[materials]]
-name = "slab"
-model = "elastic"
-density = 300
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-[[bodies]]
-material = "slab"
-shape = "box"
-min = [0, 0, 0]
-max = [%g, %g, %g]
-velocity = [%g, 0, 0]
 )",
                 dx, g * std::sin(t), -g * std::cos(t), ramp, -4 * dx, 8 * dx, 8 * dx, h + 8 * dx, mu, dir.c_str(), cRes,
-                regionKeys.c_str(), 8 * dx, 8 * dx, h, speed);
-  return buf;
+                regionKeys.c_str());
+  return buf + plugSlab(dx, h, speed);
 }
 
 } // namespace talus::test

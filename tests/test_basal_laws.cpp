@@ -33,21 +33,9 @@ max = [%g, %g, %g]
 periodic = ["x", "y"]
 walls = "slip"
 z_min = %s
-[[materials]]
-name = "slab"
-model = "elastic"
-density = 300
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-[[bodies]]
-material = "slab"
-shape = "box"
-min = [0, 0, 0]
-max = [%g, %g, %g]
 )",
-                dx, kG * std::sin(t), -kG * std::cos(t), ramp, 8 * dx, 8 * dx, h + 8 * dx, law.c_str(), 8 * dx,
-                8 * dx, h);
-  return buf;
+                dx, kG * std::sin(t), -kG * std::cos(t), ramp, 8 * dx, 8 * dx, h + 8 * dx, law.c_str());
+  return buf + test::plugSlab(dx, h);
 }
 
 /// The gravity ramp of engine/simulation.cpp: (1 - cos(pi t / T)) / 2 until T.
