@@ -1,5 +1,7 @@
 #include "engine/simulation.h"
 
+#include "engine/particle_cull.h"
+
 #include "engine/fbar.h"
 #include "engine/grid_update.h"
 #include "engine/particle_binning.h"
@@ -262,40 +264,8 @@ void Simulation::checkFinite(size_t nonFinite) const {
 }
 
 void Simulation::cullEscaped() {
-  const double half = 0.5 * settings_.dx;
-  Vec3 lo, hi;
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = Real(settings_.domain.min[d] - (settings_.faces[2 * d] ? half : 0.0));
-    hi[d] = Real(settings_.domain.max[d] + (settings_.faces[2 * d + 1] ? half : 0.0));
-    if (periodic_.axis[d]) lo[d] = -std::numeric_limits<Real>::max(), hi[d] = std::numeric_limits<Real>::max();
-  }
-  for (auto* g : groupPtrs_) {
-    auto& P = g->particles;
-    const size_t n = P.size();
-    if (periodic_.any())
-      for (size_t p = 0; p < n; ++p)
-        for (int a = 0; a < 3; ++a)
-          if (periodic_.axis[a]) P.x[p][a] = periodic_.wrap(a, P.x[p][a], Real(settings_.dx));
-    std::vector<uint8_t> keep(n);
-    size_t kept = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, n, 8192), size_t(0),
-        [&](const auto& r, size_t acc) {
-          for (size_t p = r.begin(); p != r.end(); ++p) {
-            const Vec3& x = P.x[p];
-            keep[p] = (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all();
-            acc += keep[p];
-          }
-          return acc;
-        },
-        std::plus<size_t>());
-    if (kept == n) continue;
-    double removed = 0;
-    for (size_t p = 0; p < n; ++p)
-      if (!keep[p]) removed += double(P.mass[p]);
-    massRemoved_[size_t(g->index())] += removed;
-    P.forEachArray([&](auto& a) { compactInPlace(a, keep); });
-    g->compactState(keep);
-  }
+  const CullBox box = cullBox(settings_.domain, settings_.faces, periodic_, settings_.dx);
+  for (auto* g : groupPtrs_) massRemoved_[size_t(g->index())] += cullOutside(*g, box, periodic_, Real(settings_.dx));
 }
 
 size_t Simulation::particleCount() const {

@@ -44,8 +44,8 @@ struct Sym3 {
 };
 
 /// Axis-aligned domain box in the local frame. Nodes on or beyond a face meet the face's collider
-/// (when it has one); particles beyond a face are removed and their mass reported (half a cell
-/// beyond a closed face, at an open one).
+/// (when it has one); particles beyond a face are removed and their mass reported (at an open
+/// face; half a cell beyond the first node row a closed face holds: engine/particle_cull.h).
 struct DomainBox {
   Eigen::Vector3d min = Eigen::Vector3d::Zero(), max = Eigen::Vector3d::Ones();
 };

@@ -56,19 +56,25 @@ TEST(DamBreak, SurgeFrontAgainstKoshizukaOkaAndMartinMoyce) {
   EXPECT_NEAR(m.frontSpeed, m.frontSpeedExp, 0.05 * m.frontSpeedExp);
 }
 
-// Goal (issue 14): peak and its time within 15% after a stated filter (a centred moving average
-// over 0.2 in t sqrt(g/H)). Softened water delays and spreads the impact: with c = 50, 100, 200
-// m/s the pressure at T = 2.8 is 0.25, 0.35, 0.51 against the experiment's 0.69, so the test
-// runs at c = 200 (40 times the front speed). The particles in the wall cell meet the goal at
-// H/dx = 20 (peak -9.2% at +6.3% in time, onset +2.3%, plateau +0.8%) and at 10 (+10%, +11%),
-// not at 30 (peak -38%); the tolerances are the goal's, at the resolution where it is met.
-// The wall's own load at P1's height ([[panels]] on the rows within 2 dx, tent-weighted) reads
-// far less: peak -61%, plateau -30% at H/dx = 20 (-47%/-27% at 10, -65%/-27% at 30), and the
-// wall cells' particle pressure integrates to 1.5-3 times the force the wall takes, so that
-// sensor's agreement is not borne out by the momentum balance (docs/convergence.md). The wall
-// sensor is held to the one figure it gets right, the arrival: onset within 10% (measured
-// +6.8%; its thin first sheet loads the wall little, so the filtered load passes 0.1 later than
-// the cell's particles do).
+// Goal (issue 14; issue 34 for the wall's load): onset, peak and its time within 15 %, plateau
+// within 10 %, after a stated filter (a centred moving average over 0.2 in t sqrt(g/H)), by the
+// wall's own load at P1's height ([[panels]] on the node rows within 2 dx, tent-weighted): the
+// force a structure designer reads. Softened water delays and spreads the impact (c = 50, 100,
+// 200 m/s: 0.25, 0.35, 0.51 at T = 2.8 in the particles), so the test runs at c = 200 (40 times the
+// front speed). Held here:
+// - the momentum balance: the impulse all colliders took along x is the x momentum the water
+//   lost (measured to 5.8e-5 of its largest momentum; held to 2e-4), and no water leaves the
+//   tank. Both failed (4.4e-4; 0.32 kg, 0.75 % of the water, culled unseen by any wall) while
+//   the cull stood half a cell past the far wall's plane, which is 0.68 cells short of the node
+//   row that is the wall (engine/particle_cull.h);
+// - the wall's onset within 10 % (measured +6.8 %).
+// Not met, and held only against getting worse (docs/convergence.md, "Wall pressure", has the
+// runs that separate the causes): the wall's peak (measured -61 %) and plateau (-28.4 %, bound
+// 35 %). The wall's load is concentrated in the two node rows at the floor (1.2-1.9 rho g H) and
+// falls to a third of the experiment's by P1's height, at every resolution; the total force on
+// the wall is converged (930-970 N/m at H/dx 10, 20, 30). The particles in the wall cell (the
+// cell sensor) are not a measure of the model: their peak moved from -9 % to -26 % when the cull
+// stopped removing the particles pressed against the wall, and by -41 % at 27 per cell.
 TEST(DamBreak, WallPressureAgainstBuchnerSensorP1) {
   const std::string file = damBreakData("buchner2002_pressure_P1_trixiparticles.csv");
   if (file.empty()) GTEST_SKIP() << "../shared is absent: no Buchner data to compare with";
@@ -84,10 +90,11 @@ TEST(DamBreak, WallPressureAgainstBuchnerSensorP1) {
                 100 * (s->peak / e.peak - 1), s->peakT, 100 * (s->peakT / e.peakT - 1), s->plateau,
                 100 * (s->plateau / e.plateau - 1));
   std::printf("  Buchner: onset %.2f, peak %.3f at %.2f, plateau %.3f\n", e.onsetT, e.peak, e.peakT, e.plateau);
-  const validation::PressureSignal& s = r.cell;
-  EXPECT_NEAR(s.onsetT, e.onsetT, 0.05 * e.onsetT);
-  EXPECT_NEAR(s.peakT, e.peakT, 0.15 * e.peakT);
-  EXPECT_NEAR(s.peak, e.peak, 0.15 * e.peak);
-  EXPECT_NEAR(s.plateau, e.plateau, 0.10 * e.plateau);
+  std::printf("  momentum balance: colliders' x impulse against the water's loss, off by %.2e of its largest "
+              "momentum; mass culled %.3g kg\n", r.momentumImbalance, r.massRemoved);
+  EXPECT_LT(r.momentumImbalance, 2e-4);
+  EXPECT_EQ(r.massRemoved, 0.0);
   EXPECT_NEAR(r.wall.onsetT, e.onsetT, 0.10 * e.onsetT);
+  EXPECT_GT(r.wall.peak, 0.35 * e.peak);       // goal 15 %: not met (measured -61 %)
+  EXPECT_NEAR(r.wall.plateau, e.plateau, 0.35 * e.plateau); // goal 10 %: not met (measured -28.4 %)
 }

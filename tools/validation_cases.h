@@ -86,6 +86,10 @@ struct WallImpactResult : RunCost {
   std::vector<double> T;
   PressureSignal wall, cell;          ///< the two sensors (above)
   PressureSignal exp;                 ///< the digitised data (onset, peak, plateau; P and PFiltered empty)
+  /// Momentum balance over the run: the impulse every collider took along x against the x
+  /// momentum the water lost, |difference| over the largest momentum the water had (no particle
+  /// may leave without loading a wall), and the mass culled (kg).
+  double momentumImbalance = 0, massRemoved = 0;
 };
 WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r);
 /// Quasi-2-D granular column collapse (phi 32, rough bed mu 0.625) of a column a L0 high and L0

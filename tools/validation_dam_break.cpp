@@ -149,10 +149,14 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
   std::vector<float> pressure;
   double impulse = 0, tLast = 0; // the rows' weighted normal impulse since the last sample (N s)
+  double wallsImpulse = 0, largest = 0;  // every collider's x impulse; the largest x momentum
+  const double momentum0 = sim->linearMomentum().x();
   auto onStep = [&] {
     const double dt = sim->time() - tLast;
     tLast = sim->time();
     for (size_t i = 0; i < rows.size(); ++i) impulse += dt * rows[i].second * sim->colliderLoads()[panel[i]].force.x();
+    for (const ColliderLoad& l : sim->colliderLoads()) wallsImpulse += dt * l.force.x();
+    largest = std::max(largest, std::abs(sim->linearMomentum().x()));
   };
   for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
     const double T = 0.01 * i, tStart = sim->time();
@@ -173,6 +177,10 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
     res.T.push_back(T), res.cell.P.push_back(n ? sum / double(n) / pScale : 0.0);
   }
   finish(*sim, t0, res);
+  // The loads are what the colliders took from the water: the x momentum it lost.
+  const double lost = momentum0 - sim->linearMomentum().x();
+  res.momentumImbalance = std::abs(wallsImpulse - lost) / std::max(largest, 1e-30);
+  for (double m : sim->massRemoved()) res.massRemoved += m;
   const int half = int(std::lround(0.5 * WallImpactResult::kFilterT / 0.01));
   for (PressureSignal* s : {&res.wall, &res.cell}) {
     const int count = int(s->P.size());
