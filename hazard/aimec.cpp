@@ -87,6 +87,7 @@ PathStats analyse(const Transform& t, const std::vector<float>& f, double thresh
     }
     st.crossMax.push_back(mx);
     st.crossMean.push_back(std::isfinite(mx) ? (area > 0 ? sum / area : 0.0) : kNaN);
+    st.crossIntegral.push_back(std::isfinite(mx) ? sum / t.cellSize : kNaN); // a cross-section stands for cellSize of s
   }
   bool meanFound = false;
   size_t iMean = 0;

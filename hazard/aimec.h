@@ -4,6 +4,8 @@
 // across it (positive to the left, looking down the path), and analysed per cross-section:
 //
 //   crossMax(s)  = max over l of A(s, l);  crossMean(s) = area-weighted mean over cells with A > 0
+//   crossIntegral(s) = sum over l of max(A, 0) times the cell's area, per metre along s (Talus's:
+//                  an erosion depth's eroded volume per metre of path)
 //   run-out      = the last s where crossMax(s) > A_lim (strictly, as AIMEC); its start the first
 //   deltaSXY     = sRunout - sStart; runout angle atan((z(sStart) - z(sRunout)) / deltaSXY)
 //   MMA, AMA     = max and mean of crossMax over [sStart, sRunout]
@@ -50,6 +52,9 @@ std::vector<float> resample(const Transform& t, const DemRaster& raster);
 struct PathStats {
   double threshold = 0;
   std::vector<double> crossMax, crossMean; ///< per cross-section (NaN where no data at all)
+  /// Per cross-section, the field's positive values times their cell areas, per metre along s
+  /// (an erosion depth: the eroded volume per metre of path); NaN where no data at all.
+  std::vector<double> crossIntegral;
   bool found = false;                      ///< some crossMax exceeds the threshold
   size_t iStart = 0, iRunout = 0;
   double sStart = kNaN, sRunout = kNaN, lRunout = kNaN, xRunout = kNaN, yRunout = kNaN;

@@ -27,6 +27,8 @@ struct AnalysisOptions {
   double cellSL = 0;        ///< (s, l) cell; 0 = the (reference) raster's
   double runoutAreaAngle = 0; ///< > 0: compare areas only from where the thalweg flattens below this (deg)
   std::string splitPoint;   ///< "x,y": the run-out area starts after it
+  double scale = 1;         ///< multiplies the section integrals (a density: an erosion depth's kg/m)
+  std::string integralPlot; ///< the section integral and its running sum along s
   // series-stats
   std::string series;
   double restFraction = 0.01;

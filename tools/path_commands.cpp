@@ -102,7 +102,11 @@ void addAimecOptions(CLI::App* mapStats, CLI::App* compare, AnalysisOptions& o) 
   mapStats->add_option("--dem", o.dem, "DEM: elevations along the path (runout angle) and real cell areas");
   mapStats->add_option("--png", o.png, "(s, l) picture of the field (with --aimec)");
   mapStats->add_option("--plot", o.plot, "Peak values along s: cross-section maximum and mean (with --aimec)");
-  mapStats->add_option("--out", o.csv, "CSV of s, cross-section maximum and mean (with --aimec)");
+  mapStats->add_option("--out", o.csv, "CSV of s, cross-section maximum, mean, integral per metre and its sum (with --aimec)");
+  mapStats->add_option("--scale", o.scale, "Multiplies the section integrals, e.g. a cover's density: an erosion depth's "
+                                           "kg per metre of path (with --aimec)");
+  mapStats->add_option("--integral-plot", o.integralPlot, "The section integral per metre and its running sum along s "
+                                                         "(with --aimec)");
   mapStats->add_option("--title", o.title, "Title of the plot and the picture (with --aimec)");
 }
 
@@ -121,13 +125,30 @@ int runAimecMapStats(const AnalysisOptions& o) {
                 num(p.ama, "%.4g").c_str(), num(p.sMeanRunout).c_str(), p.found ? "" : "  (never above the threshold)");
   }
   const aimec::PathStats p = aimec::analyse(s.t, f, ts.front());
+  // The section integrals (times --scale) per metre of s and summed from the path's start.
+  std::vector<double> perMetre, running;
+  double sum = 0;
+  for (size_t i = 0; i < s.t.ns; ++i) {
+    const double v = o.scale * p.crossIntegral[i];
+    perMetre.push_back(v);
+    if (std::isfinite(v)) sum += v * s.t.cellSize;
+    running.push_back(sum);
+  }
+  std::printf("integral over the (s, l) grid (x %g): %.6g\n", o.scale, sum);
   if (!o.csv.empty()) {
     std::ofstream out(o.csv);
-    out << "s_m,z_thalweg_m,cross_max,cross_mean\n";
+    out << "s_m,z_thalweg_m,cross_max,cross_mean,cross_integral_per_m,cumulative\n";
     for (size_t i = 0; i < s.t.ns; ++i)
       out << num(s.t.s[i], "%.3f") << "," << num(s.t.zThalweg[i], "%.3f") << "," << num(p.crossMax[i], "%.6g") << ","
-          << num(p.crossMean[i], "%.6g") << "\n";
+          << num(p.crossMean[i], "%.6g") << "," << num(perMetre[i], "%.6g") << "," << num(running[i], "%.6g") << "\n";
     std::printf("table: %s\n", o.csv.c_str());
+  }
+  if (!o.integralPlot.empty()) {
+    writeLineChart(o.integralPlot,
+                   o.title.empty() ? "Section integral per metre of path (in all " + num(sum, "%.4g") + ")" : o.title,
+                   "s along the path (m)", valueLabel(o.rasters[0]) + " x m2 per m (x " + num(o.scale, "%g") + ")", s.t.s,
+                   {{"per metre of path", perMetre, false}});
+    std::printf("plot: %s\n", o.integralPlot.c_str());
   }
   if (!o.plot.empty()) {
     std::vector<double> lim(s.t.ns, ts.front());
