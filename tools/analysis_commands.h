@@ -28,7 +28,8 @@ struct AnalysisOptions {
   double runoutAreaAngle = 0; ///< > 0: compare areas only from where the thalweg flattens below this (deg)
   std::string splitPoint;   ///< "x,y": the run-out area starts after it
   double scale = 1;         ///< multiplies the section integrals (a density: an erosion depth's kg/m)
-  std::string integralPlot; ///< the section integral and its running sum along s
+  std::string integralPlot; ///< the section integral per metre along s
+  std::string integralLabel; ///< its axis label (e.g. "entrained snow (kg/m)")
   // series-stats
   std::string series;
   double restFraction = 0.01;

@@ -105,8 +105,8 @@ void addAimecOptions(CLI::App* mapStats, CLI::App* compare, AnalysisOptions& o) 
   mapStats->add_option("--out", o.csv, "CSV of s, cross-section maximum, mean, integral per metre and its sum (with --aimec)");
   mapStats->add_option("--scale", o.scale, "Multiplies the section integrals, e.g. a cover's density: an erosion depth's "
                                            "kg per metre of path (with --aimec)");
-  mapStats->add_option("--integral-plot", o.integralPlot, "The section integral per metre and its running sum along s "
-                                                         "(with --aimec)");
+  mapStats->add_option("--integral-plot", o.integralPlot, "The section integral per metre along s (with --aimec)");
+  mapStats->add_option("--integral-label", o.integralLabel, "Its axis label, e.g. \"entrained snow (kg/m)\"");
   mapStats->add_option("--title", o.title, "Title of the plot and the picture (with --aimec)");
 }
 
@@ -134,7 +134,7 @@ int runAimecMapStats(const AnalysisOptions& o) {
     if (std::isfinite(v)) sum += v * s.t.cellSize;
     running.push_back(sum);
   }
-  std::printf("integral over the (s, l) grid (x %g): %.6g\n", o.scale, sum);
+  if (o.scale != 1 || !o.integralPlot.empty()) std::printf("integral over the (s, l) grid (x %g): %.6g\n", o.scale, sum);
   if (!o.csv.empty()) {
     std::ofstream out(o.csv);
     out << "s_m,z_thalweg_m,cross_max,cross_mean,cross_integral_per_m,cumulative\n";
@@ -146,7 +146,10 @@ int runAimecMapStats(const AnalysisOptions& o) {
   if (!o.integralPlot.empty()) {
     writeLineChart(o.integralPlot,
                    o.title.empty() ? "Section integral per metre of path (in all " + num(sum, "%.4g") + ")" : o.title,
-                   "s along the path (m)", valueLabel(o.rasters[0]) + " x m2 per m (x " + num(o.scale, "%g") + ")", s.t.s,
+                   "s along the path (m)",
+                   o.integralLabel.empty() ? valueLabel(o.rasters[0]) + " x m2 per m (x " + num(o.scale, "%g") + ")"
+                                           : o.integralLabel,
+                   s.t.s,
                    {{"per metre of path", perMetre, false}});
     std::printf("plot: %s\n", o.integralPlot.c_str());
   }

@@ -88,6 +88,10 @@ analyse_fluela() {
       --ground "$d/maps/ground_elevation.tif" --path "2600140,1200450 2601250,1200450" --half-width 300
     echo "# snow eroded"
     "$talus" map-stats "$d/maps/snow/erosion_depth.tif" --threshold 0.1
+    echo "# snow entrained along the path (kg per metre; the snow's density 250 kg/m3)"
+    "$talus" map-stats "$d/maps/snow/erosion_depth.tif" --aimec --path "2600140,1200450 2601250,1200450" \
+      --domain-width 300 --threshold 0.1 --scale 250 --out "$a/entrained_along_path.csv" \
+      --integral-plot "$a/entrained_along_path.png" --integral-label "entrained snow (kg per m of path)"
   } > "$a/deposit.txt"
 }
 

@@ -141,8 +141,16 @@ BodyReport seedTerrainBody(const TerrainBody& body, const HeightField& bed, cons
   // The quadrature bounds z only to within a sample spacing: pad (columnRange bounds the cells).
   const Vec3d pad(0, 0, 10 * spec.dx);
   const size_t first = group->particles.size();
-  rep.particles = seedColumns(lo - origin - pad, hi - origin + pad, columnRange, inside, [&](const Vec3d&) { return v0; }, spec,
-                              *group);
+  auto seed = [&](const SeedSpec& sp) {
+    return seedColumns(lo - origin - pad, hi - origin + pad, columnRange, inside, [&](const Vec3d&) { return v0; }, sp,
+                       *group);
+  };
+  rep.particles = seed(spec);
+  if (rep.particles == 0 && spec.latticeDecides) { // thinner than the spacing: no lattice point inside
+    SeedSpec jittered = spec;
+    jittered.latticeDecides = false;
+    rep.particles = seed(jittered);
+  }
   rep.seededVolume = double(rep.particles) * std::pow(spec.dx, 3) / spec.particlesPerCell;
   if (rep.particles == 0) t.fail(key, "body holds no particle (thinner than the particle spacing, or inside the terrain)");
   matchVolume(t, body, rep, *group, first);

@@ -32,7 +32,7 @@ bool insideSolid(const SeedSpec& spec, const Vec3d& x) {
 }
 } // namespace
 
-Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
+Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s, bool jittered) {
   uint64_t h = splitmix(spec.seed ^ splitmix(uint64_t(i) * 73856093ull ^ splitmix(uint64_t(j) * 19349663ull ^
                                                                            splitmix(uint64_t(k) * 83492791ull))));
   h = splitmix(h + uint64_t(s));
@@ -40,14 +40,43 @@ Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s) {
   if (n > 0) {
     const int a = s / (n * n), b = (s / n) % n, c = s % n;
     Vec3d p((a + 0.5) / n, (b + 0.5) / n, (c + 0.5) / n);
-    if (spec.jitter > 0)
-      for (int d = 0; d < 3; ++d) p[d] += (unit(h) - 0.5) * spec.jitter / n;
+    if (spec.jitter > 0 && jittered)
+      for (int d = 0; d < 3; ++d) {
+        const double u = unit(h); // drawn for every axis, so z's draw is the same either way
+        if (d == 2 || !spec.verticalJitter) p[d] += (u - 0.5) * spec.jitter / n;
+      }
     return p;
   }
   // Stratify along x so samples never cluster in one half of the cell.
   const double ppc = spec.particlesPerCell;
   return {(s + unit(h)) / ppc, unit(h), unit(h)};
 }
+
+namespace {
+
+/// The seeded positions of grid column (i, j), cells k0 .. k1 - 1, in (cell, sample) order, into
+/// `out`. With spec.latticeDecides (a lattice with jitter) a sample is kept when its lattice point
+/// is inside, at its jittered place where that stays inside, else at the lattice point: every
+/// lattice column keeps the lattice's count, so a layer's mass per plan area is uniform, and the
+/// count is the lattice's unbiased estimate of the volume.
+void columnSamples(const SeedSpec& spec, int64_t i, int64_t j, int64_t k0, int64_t k1,
+                   const std::function<bool(const Vec3d&)>& keeps, std::vector<Vec3d>& out) {
+  out.clear();
+  const bool lattice = spec.latticeDecides && cubeRoot(spec.particlesPerCell) > 0 && spec.jitter > 0;
+  for (int64_t k = k0; k < k1; ++k)
+    for (int s = 0; s < spec.particlesPerCell; ++s) {
+      const Vec3d cell = Vec3d(double(i), double(j), double(k));
+      const Vec3d x = (cell + cellSample(spec, i, j, k, s)) * spec.dx;
+      if (!lattice) {
+        if (keeps(x)) out.push_back(x);
+        continue;
+      }
+      const Vec3d x0 = (cell + cellSample(spec, i, j, k, s, false)) * spec.dx;
+      if (keeps(x0)) out.push_back(keeps(x) ? x : x0);
+    }
+}
+
+} // namespace
 
 size_t seedRegion(const Vec3d& lo, const Vec3d& hi, const std::function<bool(const Vec3d&)>& inside,
                   const std::function<Vec3d(const Vec3d&)>& velocity, const SeedSpec& spec,
@@ -89,28 +118,29 @@ size_t seedColumns(const Vec3d& lo, const Vec3d& hi, const ColumnRange& columnRa
   std::vector<size_t> counts(rows, 0);
   std::vector<std::vector<uint32_t>> ordinal(rows); // kept particles' places in their row
   SeedSlice* slice = spec.slice && spec.slice->active() ? spec.slice : nullptr;
+  auto keeps = [&](const Vec3d& x) {
+    return !(x.array() < lo.array()).any() && !(x.array() > hi.array()).any() && inside(x) && !insideSolid(spec, x);
+  };
   tbb::parallel_for(size_t(0), rows, [&](size_t r) {
     const int64_t i = c0[0] + int64_t(r);
+    std::vector<Vec3d> kept;
     for (int64_t j = c0[1]; j < c1[1]; ++j) {
       double zlo, zhi;
       if (!columnRange(double(i) * dx, double(j) * dx, double(i + 1) * dx, double(j + 1) * dx, zlo, zhi)) continue;
       const int64_t k0 = int64_t(std::floor(std::max(zlo, lo.z()) / dx));
       const int64_t k1 = int64_t(std::ceil(std::min(zhi, hi.z()) / dx));
-      for (int64_t k = k0; k < k1; ++k)
-        for (int s = 0; s < spec.particlesPerCell; ++s) {
-          const Vec3d x = (Vec3d(double(i), double(j), double(k)) + cellSample(spec, i, j, k, s)) * dx;
-          if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any() || !inside(x)) continue;
-          if (insideSolid(spec, x)) continue;
-          ++counts[r];
-          if (slice) {
-            // By the x column of the stored (float) position, the column the hydrostatic start
-            // keys it by: a sample within rounding of a cell edge goes with that column.
-            if (!slice->keeps(int64_t(std::floor(double(Real(x.x())) / dx)))) continue;
-            ordinal[r].push_back(uint32_t(counts[r] - 1));
-          }
-          xs[r].push_back(x.cast<Real>());
-          vs[r].push_back(velocity(x).cast<Real>());
+      columnSamples(spec, i, j, k0, k1, keeps, kept);
+      for (const Vec3d& x : kept) {
+        ++counts[r];
+        if (slice) {
+          // By the x column of the stored (float) position, the column the hydrostatic start
+          // keys it by: a sample within rounding of a cell edge goes with that column.
+          if (!slice->keeps(int64_t(std::floor(double(Real(x.x())) / dx)))) continue;
+          ordinal[r].push_back(uint32_t(counts[r] - 1));
         }
+        xs[r].push_back(x.cast<Real>());
+        vs[r].push_back(velocity(x).cast<Real>());
+      }
     }
   });
   ParticleSet& P = group.particles;

@@ -29,6 +29,8 @@ struct SeedSpec {
   double dx = 0.1;
   int particlesPerCell = 8;
   double jitter = 0;         ///< lattice jitter as a fraction of the sub-cell spacing, [0, 1]
+  bool verticalJitter = false; ///< jitter along z only (lattice columns stay columns)
+  bool latticeDecides = false; ///< a sample is seeded when its lattice point is inside (a uniform count per column)
   uint64_t seed = 0;
   const Sdf* terrain = nullptr; ///< samples inside the ground are skipped
   std::vector<const Sdf*> solids; ///< and inside these (structures)
@@ -39,7 +41,8 @@ struct SeedSpec {
 /// Sample offsets inside a unit cell: a lattice when particles_per_cell is a cube (1, 8, 27...),
 /// otherwise stratified random points; both hashed from (seed, cell, sample) so the result does
 /// not depend on body order or thread count.
-Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s);
+/// `jittered` false: the lattice point before the jitter (for a cube particles_per_cell).
+Vec3d cellSample(const SeedSpec& spec, int64_t i, int64_t j, int64_t k, int s, bool jittered = true);
 
 /// Appends particles for every sample in [lo, hi] (local frame) where `inside` holds.
 /// Each particle gets volume dx^3 / ppc and mass density * volume, the velocity of `velocity`

@@ -247,8 +247,14 @@ void readBodies(const ConfigTable& root, SceneSetup& s, const DemTerrainInput* d
   spec.terrain = s.settings.terrain.get();
   for (const auto& st : s.settings.structures) spec.solids.push_back(st.geometry.get());
   SeedSpec terrainSpec = spec;
-  // A lattice cut by a sloping surface leaves terraces of particles; jitter breaks them up.
+  // A lattice cut by a sloping surface leaves terraces of particles; jitter breaks them up. Along
+  // z only, with the lattice point deciding whether a sample is seeded: every lattice column
+  // then keeps the lattice's count, so a layer's mass per plan area is uniform and so are its
+  // maps (a lateral jitter moved particles across map cells: 5.8 % noise cell to cell on a
+  // 30-degree slope, tests/test_map_uniformity.cpp). A body no lattice point falls in (thinner
+  // than the spacing) is seeded by its jittered samples instead (io/scene/body_seeding.cpp).
   if (!jitterGiven) terrainSpec.jitter = 0.5;
+  terrainSpec.verticalJitter = terrainSpec.latticeDecides = true;
   std::unique_ptr<HeightField> bedField;
   if (bed) bedField = std::make_unique<HeightField>(*bed);
   const DomainBox& dom = s.settings.domain;
