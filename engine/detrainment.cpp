@@ -28,7 +28,7 @@ size_t Detrainment::emit(const SparseGrid&, double, double dt, const std::vector
   const double inv = 1 / dx_;
   auto columnOf = [&](const Vec3& x, int32_t& i, int32_t& j) {
     i = int32_t(std::floor(double(x.x()) * inv)), j = int32_t(std::floor(double(x.y()) * inv));
-    return key(i, j);
+    return columnKey(i, j);
   };
   // The columns in the forest: their mass, volume and momentum, summed in particle order.
   columns_.clear();

@@ -74,7 +74,6 @@ private:
     Vec3d momentum = Vec3d::Zero();
     double fraction = 0; ///< of each particle's mass detrained this step
   };
-  static uint64_t key(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
   float coefficient(uint64_t column, int32_t i, int32_t j); ///< detK of a column (0: none), cached
 
   std::shared_ptr<const ParameterField> field_;

@@ -25,7 +25,7 @@ ErodibleBed::ErodibleBed(std::vector<ErodibleCover> covers, std::shared_ptr<cons
     return a.i != b.i ? a.i < b.i : a.j != b.j ? a.j < b.j : a.cover < b.cover;
   });
   for (uint32_t e = 0; e < entries_.size(); ++e) {
-    auto [it, fresh] = columns_.try_emplace(key(entries_[e].i, entries_[e].j), e, e + 1);
+    auto [it, fresh] = columns_.try_emplace(columnKey(entries_[e].i, entries_[e].j), e, e + 1);
     if (!fresh) it->second.second = e + 1;
   }
   columnWork_.assign(entries_.size(), 0.0);
@@ -48,7 +48,7 @@ void ErodibleBed::erode(SparseGrid& grid, double dt) {
       for (int n = 0; n < kBlockNodes; ++n) {
         if (!(w[n] > 0.f)) continue;
         const int32_t i = c.x * kBlockDim + (n >> (2 * kBlockLog2)), j = c.y * kBlockDim + ((n >> kBlockLog2) & 7);
-        const auto it = columns_.find(key(i, j));
+        const auto it = columns_.find(columnKey(i, j));
         if (it == columns_.end()) continue;
         const Vec3d x = Vec3d(i, j, c.z * kBlockDim + (n & 7)) * dx_;
         f(nodes[n], it->second, double(w[n]), x);
@@ -126,7 +126,7 @@ size_t ErodibleBed::release(const std::vector<MaterialGroup*>& groups) {
 }
 
 double ErodibleBed::erodedMass(int32_t i, int32_t j, size_t cover) const {
-  const auto it = columns_.find(key(i, j));
+  const auto it = columns_.find(columnKey(i, j));
   if (it == columns_.end()) return 0;
   for (uint32_t e = it->second.first; e < it->second.second; ++e)
     if (size_t(entries_[e].cover) == cover) return entries_[e].initial - entries_[e].remaining;

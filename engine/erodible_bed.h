@@ -95,7 +95,6 @@ private:
     double age = 0;                      ///< time since the pool began to fill (s)
     double idle = 0;                     ///< time since the column last eroded (s)
   };
-  static uint64_t key(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
   /// f(entry) summed over the entries of one cover, in entry order.
   template <class T, class F> T sum(size_t cover, T s, F&& f) const {
     for (const Entry& e : entries_)

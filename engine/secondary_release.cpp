@@ -17,7 +17,7 @@ SecondaryReleases::SecondaryReleases(std::vector<HeldBody> bodies, double dx)
     // The node columns nearest to its particles: where the flow over it is measured.
     std::set<uint64_t> cols;
     for (const Vec3& x : bodies_[b].x)
-      cols.insert(key(int32_t(std::lround(double(x.x()) / dx)), int32_t(std::lround(double(x.y()) / dx))));
+      cols.insert(columnKey(int32_t(std::lround(double(x.x()) / dx)), int32_t(std::lround(double(x.y()) / dx))));
     columns_[b].assign(cols.begin(), cols.end());
   }
 }
@@ -37,7 +37,7 @@ size_t SecondaryReleases::emit(const SparseGrid& grid, double time, double, cons
     for (int n = 0; n < kBlockNodes; ++n) {
       if (!(nodes[n][0] > 0)) continue;
       const int32_t i = c.x * kBlockDim + (n >> (2 * kBlockLog2)), j = c.y * kBlockDim + ((n >> kBlockLog2) & (kBlockDim - 1));
-      const auto it = mass.find(key(i, j));
+      const auto it = mass.find(columnKey(i, j));
       if (it != mass.end()) it->second += double(nodes[n][0]);
     }
   }

@@ -41,7 +41,6 @@ public:
   void load(const StateArchive& a, const std::string& prefix) override;
 
 private:
-  static uint64_t key(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
 
   std::vector<HeldBody> bodies_;
   double dx_;

@@ -68,6 +68,9 @@ inline uint64_t blockKey(const BlockCoord& c) {
 }
 
 /// Linear index of node (i, j, k) inside a block, x-major like an OpenVDB leaf.
+/// Key of a vertical column (i, j) of grid nodes or cells, for hash maps over plan positions.
+inline constexpr uint64_t columnKey(int32_t i, int32_t j) { return (uint64_t(uint32_t(i)) << 32) | uint32_t(j); }
+
 inline constexpr int blockNodeIndex(int i, int j, int k) {
   return (i << (2 * kBlockLog2)) | (j << kBlockLog2) | k;
 }
