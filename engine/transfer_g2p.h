@@ -4,6 +4,7 @@
 #include "engine/bspline.h"
 #include "engine/material_group.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -71,36 +72,69 @@ inline double fbarScale(const Mat3& C, Real dt, double mean) {
   return std::exp((std::log1p(mean) - std::log1p(own)) / 3);
 }
 
-/// Gathers v and C for particles [begin, end), lets `update(i, C, s)` advance the material state
-/// (deformation, return mapping, Kirchhoff stress; s is F-bar's scale of the step's deformation
-/// increment, 1 when that is off), then advects x with the new velocity.
+/// Particles a group's update sees at once: the SIMD kernels' lane groups fit in it.
+constexpr int kGatherChunk = 16;
+
+/// What the gather hands a group's update for up to kGatherChunk consecutive particles: their
+/// range and F-bar's scale of each one's deformation increment (1 when that is off). Their v and
+/// C are already in the particle set.
+struct GatheredChunk {
+  size_t first = 0;
+  int count = 0;
+  double fbar[kGatherChunk];
+};
+
+/// Gathers v and C for particles [begin, end) chunk by chunk, lets `update(chunk)` advance the
+/// chunk's material state (deformation, return mapping, Kirchhoff stress), then advects x with
+/// the new velocity. A particle's result does not depend on the chunking.
+template <class UpdateChunkFn>
+inline void gatherParticleChunks(const G2PBlock& blk, ParticleSet& P, size_t begin, size_t end,
+                                 G2PStats& stats, UpdateChunkFn&& update) {
+  const Real invDx = blk.invDx, dt = blk.dt;
+  Real maxSpeed2 = stats.maxSpeed * stats.maxSpeed;
+  GatheredChunk chunk;
+  Vec3 vel[kGatherChunk];
+  for (size_t q = begin; q < end; q += kGatherChunk) {
+    chunk.first = q;
+    chunk.count = int(std::min<size_t>(kGatherChunk, end - q));
+    for (int k = 0; k < chunk.count; ++k) {
+      const size_t p = q + size_t(k);
+      const QuadraticStencil s(P.x[p] * invDx);
+      const int l0 = s.base[0] - blk.origin[0], l1 = s.base[1] - blk.origin[1],
+                l2 = s.base[2] - blk.origin[2];
+      Mat3 C;
+      gatherVelocity(blk.nodes, s, l0, l1, l2, invDx, vel[k], C);
+      if (blk.old) P.v[p] = vel[k] + blk.flip * (P.v[p] - gatherOld(blk.old + padIndex(l0, l1, l2), s));
+      else P.v[p] = vel[k];
+      P.C[p] = C;
+      chunk.fbar[k] = blk.meanVolumeChange
+                          ? fbarScale(C, dt, double(gatherScalar(blk.meanVolumeChange + padIndex(l0, l1, l2), s)))
+                          : 1.0;
+    }
+    update(static_cast<const GatheredChunk&>(chunk));
+    for (int k = 0; k < chunk.count; ++k) {
+      const size_t p = q + size_t(k);
+      P.x[p] += dt * vel[k]; // with the PIC velocity also under AFLIP (Fei et al. 2021)
+      // x - x is 0 for finite x and NaN otherwise: one test catches a bad stress in this step.
+      const Sym3& t = P.tau[p];
+      const Real finite = (t.xx - t.xx) + (t.yy - t.yy) + (t.zz - t.zz) + (t.xy - t.xy) + (t.xz - t.xz) + (t.yz - t.yz);
+      const Real s2 = std::max(vel[k].squaredNorm(), P.v[p].squaredNorm());
+      const bool badSpeed = !std::isfinite(s2);
+      if (!badSpeed && s2 > maxSpeed2) maxSpeed2 = s2;
+      if (badSpeed || !(finite == Real(0))) ++stats.nonFinite;
+    }
+  }
+  stats.maxSpeed = std::sqrt(maxSpeed2);
+}
+
+/// gatherParticleChunks with a per-particle update: `update(i, C, s)` for particle i, its velocity
+/// gradient C and F-bar's scale s.
 template <class UpdateFn>
 inline void gatherParticles(const G2PBlock& blk, ParticleSet& P, size_t begin, size_t end,
                             G2PStats& stats, UpdateFn&& update) {
-  const Real invDx = blk.invDx, dt = blk.dt;
-  Real maxSpeed2 = stats.maxSpeed * stats.maxSpeed;
-  for (size_t p = begin; p < end; ++p) {
-    const QuadraticStencil s(P.x[p] * invDx);
-    const int l0 = s.base[0] - blk.origin[0], l1 = s.base[1] - blk.origin[1],
-              l2 = s.base[2] - blk.origin[2];
-    Vec3 vel;
-    Mat3 C;
-    gatherVelocity(blk.nodes, s, l0, l1, l2, invDx, vel, C);
-    if (blk.old) P.v[p] = vel + blk.flip * (P.v[p] - gatherOld(blk.old + padIndex(l0, l1, l2), s));
-    else P.v[p] = vel;
-    P.C[p] = C;
-    update(p, C, blk.meanVolumeChange ? fbarScale(C, dt, double(gatherScalar(blk.meanVolumeChange + padIndex(l0, l1, l2), s)))
-                                      : 1.0);
-    P.x[p] += dt * vel; // with the PIC velocity also under AFLIP (Fei et al. 2021)
-    // x - x is 0 for finite x and NaN otherwise: one test catches a bad stress in this step.
-    const Sym3& t = P.tau[p];
-    const Real finite = (t.xx - t.xx) + (t.yy - t.yy) + (t.zz - t.zz) + (t.xy - t.xy) + (t.xz - t.xz) + (t.yz - t.yz);
-    const Real s2 = std::max(vel.squaredNorm(), P.v[p].squaredNorm());
-    const bool badSpeed = !std::isfinite(s2);
-    if (!badSpeed && s2 > maxSpeed2) maxSpeed2 = s2;
-    if (badSpeed || !(finite == Real(0))) ++stats.nonFinite;
-  }
-  stats.maxSpeed = std::sqrt(maxSpeed2);
+  gatherParticleChunks(blk, P, begin, end, stats, [&](const GatheredChunk& c) {
+    for (int k = 0; k < c.count; ++k) update(c.first + size_t(k), P.C[c.first + size_t(k)], c.fbar[k]);
+  });
 }
 
 } // namespace talus

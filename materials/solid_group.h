@@ -4,6 +4,7 @@
 #include "engine/material_group.h"
 #include "engine/transfer_g2p.h"
 #include "materials/hencky.h"
+#include "materials/solid_lanes.h"
 
 namespace talus {
 
@@ -25,6 +26,11 @@ public:
 
   void gridToParticles(const G2PBlock& blk, size_t begin, size_t end, G2PStats& stats) override {
     const double dt = blk.dt;
+    SolidLaneParams lanes;
+    if (solidLaneParams(model, lanes)) {
+      gatherParticleChunks(blk, particles, begin, end, stats, [&](const GatheredChunk& c) { updateInLanes(lanes, dt, c); });
+      return;
+    }
     gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C, double fbar) {
       const Mat3d Ftrial =
           (fbar * (Mat3d::Identity() + dt * C.template cast<double>())) * F[p].template cast<double>();
@@ -77,6 +83,40 @@ public:
 
   size_t stateBytesPerParticle() const override {
     return sizeof(Mat3) + sizeof(typename Model::State);
+  }
+
+private:
+  /// One chunk's update in SIMD lanes (materials/solid_lanes.h); a lane off the usual path takes
+  /// the scalar updateSolid on the trial F the kernel formed.
+  void updateInLanes(const SolidLaneParams& prm, double dt, const GatheredChunk& c) {
+    SolidLanes io;
+    for (int k = 0; k < kSolidLanes; ++k) {
+      const bool live = k < c.count;
+      const size_t p = c.first + size_t(live ? k : 0);
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q) {
+          io.C[3 * r + q][k] = live ? double(particles.C[p](r, q)) : 0.0;
+          io.F[3 * r + q][k] = live ? double(F[p](r, q)) : double(r == q);
+        }
+      io.fbar[k] = live ? c.fbar[k] : 1.0;
+      io.strain[k] = io.yielded[k] = 0;
+      if (live) laneState(state[p], io.strain[k], io.yielded[k]);
+    }
+    updateSolidLanes(prm, dt, c.count, io);
+    for (int k = 0; k < c.count; ++k) {
+      const size_t p = c.first + size_t(k);
+      if (io.scalar[k] != 0) {
+        Mat3d Ftrial;
+        for (int r = 0; r < 9; ++r) Ftrial(r / 3, r % 3) = io.Ftrial[r][k];
+        updateSolid(model, Ftrial, state[p], F[p], particles.tau[p], dt);
+        continue;
+      }
+      for (int r = 0; r < 9; ++r) F[p](r / 3, r % 3) = Real(io.F[r][k]);
+      Sym3& t = particles.tau[p];
+      t.xx = Real(io.tau[0][k]), t.yy = Real(io.tau[1][k]), t.zz = Real(io.tau[2][k]);
+      t.xy = Real(io.tau[3][k]), t.xz = Real(io.tau[4][k]), t.yz = Real(io.tau[5][k]);
+      setLaneState(state[p], io.strain[k], io.yielded[k]);
+    }
   }
 };
 

@@ -15,7 +15,7 @@ packages=(
   cmake ninja-build g++ pkg-config ccache
   libopenvdb-dev libblosc-dev libboost-iostreams-dev libtbb-dev libeigen3-dev
   libhdf5-dev zlib1g-dev libgtest-dev libtomlplusplus-dev libcli11-dev
-  libgdal-dev gdal-bin libcairo2-dev libnlopt-cxx-dev
+  libgdal-dev gdal-bin libcairo2-dev libnlopt-cxx-dev libhwy-dev
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev
   pybind11-dev python3-dev python3-numpy

@@ -1,0 +1,108 @@
+// The solid update of updateSolid (materials/hencky.h) for several particles side by side in SIMD
+// lanes: the deformation increment, the Hencky strain by its series, the return mapping, the
+// plastic correction and the Kirchhoff stress. Google Highway picks the machine's widest target at
+// run time (SSE4, AVX2, AVX-512, or portable scalar code without them).
+//
+// Every lane runs the same IEEE operations in the same order, and the kernel is compiled without
+// contraction into fused multiply-adds, so a particle's result is bit for bit the same on every
+// target and at any lane grouping (tests/test_solid_lanes.cpp checks each target the machine has).
+// It is not bit for bit the scalar updateSolid's (Eigen sums some products in another order): the
+// two agree to the float the results are stored in, within a few units in its last place.
+//
+// Covered: the elastic model, Drucker–Prager without softening (the lab box, rock and debris at
+// constant strength) and Cam Clay (snow), on the usual path (|b - I| <= 0.25, J > 0). A lane
+// outside it, or whose Cam Clay hardening Newton fails, is flagged and its particle takes the
+// scalar updateSolid, as does softening Drucker–Prager.
+#pragma once
+
+#include "materials/cam_clay.h"
+#include "materials/drucker_prager.h"
+#include "materials/elastic.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace talus {
+
+/// Particles per call of updateSolidLanes: a multiple of every target's lane count (2 to 8 doubles).
+constexpr int kSolidLanes = 16;
+
+/// What the kernel needs of the model: the Hencky moduli and, for Drucker–Prager at constant
+/// strength, the cone (q = gamma (p + c)).
+struct SolidLaneParams {
+  enum class Kind { Elastic, DruckerPrager, CamClay };
+  Kind kind = Kind::Elastic;
+  double mu = 0, lambda = 0;
+  double bulk = 0;      ///< lambda + 2 mu / 3
+  double qScale = 0;    ///< q = qScale |dev eps| = sqrt(3/2) 2 mu |dev eps|
+  double gamma = 0;     ///< cone slope
+  double cohesion = 0;  ///< c (Pa): tension tip at p = -c
+  double M = 0, Ms = 0, beta = 0, xi = 0; ///< Cam Clay: slopes before and after yield, tension ratio, hardening
+};
+
+/// Structure-of-arrays input and output of kSolidLanes particles; matrices row by row (index 3 i + j).
+struct alignas(64) SolidLanes {
+  double C[9][kSolidLanes];      ///< in: APIC velocity gradient
+  double fbar[kSolidLanes];      ///< in: F-bar's scale of the increment (1 when off)
+  double F[9][kSolidLanes];      ///< in: elastic F of the last step; out: the new one
+  double strain[kSolidLanes];    ///< in/out: plastic strain (Drucker–Prager's e, Cam Clay's eps_v)
+  double yielded[kSolidLanes];   ///< in/out: Cam Clay's flag, 0 or 1
+  double tau[6][kSolidLanes];    ///< out: Kirchhoff stress xx, yy, zz, xy, xz, yz
+  double Ftrial[9][kSolidLanes]; ///< out: (fbar (I + dt C)) F, for the lanes left to the scalar path
+  double scalar[kSolidLanes];    ///< out: 1 where the lane is off the usual path, else 0
+};
+
+/// Updates lanes [0, n) of `io` (n <= kSolidLanes) over the step dt. Lanes from n up to the next
+/// multiple of the target's width are computed too and must hold finite values (e.g. identity F).
+/// Where io.scalar is 1, F, tau and strain are not written: the caller runs updateSolid on Ftrial.
+void updateSolidLanes(const SolidLaneParams& params, double dt, int n, SolidLanes& io);
+
+/// The name of the Highway target updateSolidLanes runs on ("AVX3", "AVX2", "SSE4", "SSSE3" or the portable "SCALAR").
+const char* solidLanesTarget();
+
+/// For tests: the targets compiled in that this machine runs (Highway's target bits), and a way to
+/// make updateSolidLanes run on one of them (0 restores the best).
+std::vector<int64_t> solidLanesTargets();
+void useSolidLanesTarget(int64_t target);
+
+/// Whether Model's update runs in lanes, and with what; false leaves it to the scalar updateSolid.
+inline bool solidLaneParams(const ElasticModel& m, SolidLaneParams& out) {
+  out = {SolidLaneParams::Kind::Elastic, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(), 0, 0, 0};
+  return true;
+}
+inline bool solidLaneParams(const DruckerPragerModel& m, SolidLaneParams& out) {
+  if (m.softens()) return false;
+  const DruckerPragerParams& p = m.params();
+  out = {SolidLaneParams::Kind::DruckerPrager, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(),
+         std::sqrt(1.5) * 2 * m.elastic.mu, DruckerPragerModel::gammaOf(p.residualFrictionAngle, p.cone), p.cohesion};
+  return true;
+}
+inline bool solidLaneParams(const CamClayModel& m, SolidLaneParams& out) {
+  const CamClayParams& c = m.params;
+  out = {SolidLaneParams::Kind::CamClay, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(),
+         std::sqrt(1.5) * 2 * m.elastic.mu, 0, 0, c.M, c.Ms, c.beta, c.xi};
+  return true;
+}
+
+/// Any other model (μ(I), rate-dependent) stays scalar.
+template <class Model>
+bool solidLaneParams(const Model&, SolidLaneParams&) { return false; }
+
+/// The plastic strain and flag a lane carries, read from and written back to a model's state.
+inline void laneState(const DruckerPragerModel::State& s, double& strain, double& flag) { strain = s.plasticStrain, flag = 0; }
+inline void setLaneState(DruckerPragerModel::State& s, double strain, double) { s.plasticStrain = float(strain); }
+inline void laneState(const CamClayModel::State& s, double& strain, double& yielded) {
+  strain = s.volumetricPlasticStrain, yielded = s.yielded;
+}
+inline void setLaneState(CamClayModel::State& s, double strain, double yielded) {
+  s.volumetricPlasticStrain = float(strain), s.yielded = uint8_t(yielded != 0);
+}
+template <class State>
+void laneState(const State&, double& strain, double& yielded) {
+  strain = 0, yielded = 0;
+}
+template <class State>
+void setLaneState(State&, double, double) {}
+
+} // namespace talus
