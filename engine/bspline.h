@@ -12,6 +12,7 @@ struct QuadraticStencil {
   Real f[3];     ///< particle position minus base, in cells, in [0.5, 1.5)
   Real w[3][3];  ///< weights per axis and stencil node
 
+  QuadraticStencil() = default;
   /// `xs` is the particle position in grid units (x / dx).
   explicit QuadraticStencil(const Vec3& xs) {
     for (int d = 0; d < 3; ++d) {

@@ -3,31 +3,40 @@
 #include "engine/bspline.h"
 #include "engine/transfer_g2p.h"
 
+#include <algorithm>
+
 #include <tbb/parallel_for.h>
 
 namespace talus {
 
 namespace {
 
-/// m (ΔJ - 1) and m of particles [begin, end) into the padded two-channel buffer `sums`.
+/// m (ΔJ - 1) and m of particles [begin, end) into the padded two-channel buffer `sums`; their C
+/// is gathered as G2P gathers it (gatherChunkVelocities), 16 particles at a time.
 void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const Vec4* nodes, const int origin[3],
                          Real dt, Real invDx, float* sums) {
-  for (size_t p = begin; p < end; ++p) {
-    const QuadraticStencil s(P.x[p] * invDx);
-    const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
-    Vec3 vel;
-    Mat3 C;
-    gatherVelocity(nodes, s, l0, l1, l2, invDx, vel, C);
-    const Real change = Real(volumeChangeMinusOne(double(dt) * C.cast<double>()));
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        float* row = sums + 2 * size_t(padIndex(l0 + i, l1 + j, l2));
-        for (int k = 0; k < 3; ++k) {
-          const Real w = s.w[0][i] * s.w[1][j] * s.w[2][k] * P.mass[p];
-          row[2 * k] += float(w * change);
-          row[2 * k + 1] += float(w);
+  QuadraticStencil st[kGatherChunk];
+  Vec3 vel[kGatherChunk];
+  Mat3 C[kGatherChunk];
+  for (size_t first = begin; first < end; first += kGatherChunk) {
+    const int n = int(std::min<size_t>(kGatherChunk, end - first));
+    for (int c = 0; c < n; ++c) st[c] = QuadraticStencil(P.x[first + size_t(c)] * invDx);
+    gatherChunkVelocities(nodes, origin, st, n, invDx, vel, C);
+    for (int c = 0; c < n; ++c) {
+      const size_t p = first + size_t(c);
+      const QuadraticStencil& s = st[c];
+      const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
+      const Real change = Real(volumeChangeMinusOne(double(dt) * C[c].cast<double>()));
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          float* row = sums + 2 * size_t(padIndex(l0 + i, l1 + j, l2));
+          for (int k = 0; k < 3; ++k) {
+            const Real w = s.w[0][i] * s.w[1][j] * s.w[2][k] * P.mass[p];
+            row[2 * k] += float(w * change);
+            row[2 * k + 1] += float(w);
+          }
         }
-      }
+    }
   }
 }
 

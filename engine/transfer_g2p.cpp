@@ -2,6 +2,7 @@
 
 #include "engine/fbar.h"
 #include "engine/sparse_grid.h"
+#include "engine/stencil_lanes.h"
 #include "engine/transfer_p2g.h"
 
 #include <tbb/combinable.h>
@@ -26,6 +27,37 @@ void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up,
 }
 
 } // namespace
+
+void gatherChunkVelocities(const Vec4* nodes, const int origin[3], const QuadraticStencil* s, int n, Real invDx,
+                           Vec3* vel, Mat3* C) {
+#ifdef TALUS_DOUBLE
+  for (int k = 0; k < n; ++k)
+    gatherVelocity(nodes, s[k], s[k].base[0] - origin[0], s[k].base[1] - origin[1], s[k].base[2] - origin[2], invDx,
+                   vel[k], C[k]);
+#else
+  StencilRows rows;
+  for (int k = 0; k < n; ++k) {
+    rows.first[k] = padIndex(s[k].base[0] - origin[0], s[k].base[1] - origin[1], s[k].base[2] - origin[2]);
+    std::copy_n(&s[k].w[0][0], 9, &rows.w[k][0][0]);
+  }
+  GatheredRows sums;
+  gatherRows(nodes[0].data(), rows, n, sums);
+  const Real cScale = Real(4) * invDx; // D^-1 = 4/dx^2, times dx from the stencil offsets
+  for (int k = 0; k < n; ++k) {
+    // The three nodes of a row fold into one record; the first channel (mass) is junk.
+    using Row = Eigen::Map<const Vec4, Eigen::Aligned16>;
+    const float* a = sums.all[k];
+    const Vec4 v = Row(a) + Row(a + 4) + Row(a + 8);
+    const Vec4 bk = Row(a + 4) + Real(2) * Row(a + 8);
+    const Vec4 bi = Row(sums.alongI[k]) + Row(sums.alongI[k] + 4) + Row(sums.alongI[k] + 8);
+    const Vec4 bj = Row(sums.alongJ[k]) + Row(sums.alongJ[k] + 4) + Row(sums.alongJ[k] + 8);
+    vel[k] = v.tail<3>();
+    C[k].col(0) = cScale * (bi.tail<3>() - s[k].f[0] * vel[k]);
+    C[k].col(1) = cScale * (bj.tail<3>() - s[k].f[1] * vel[k]);
+    C[k].col(2) = cScale * (bk.tail<3>() - s[k].f[2] * vel[k]);
+  }
+#endif
+}
 
 void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, Vec4* out, const PadBox& box) {
   forEachPaddedRow(box, [&](int d, int pad, int node, int n) { std::copy_n(grid.block(uint32_t(up[d])) + node, n, out + pad); });

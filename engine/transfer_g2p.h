@@ -47,6 +47,16 @@ inline void gatherVelocity(const Vec4* nodes, const QuadraticStencil& s, int l0,
   C.col(2) = cScale * (bk.tail<3>() - s.f[2] * vel);
 }
 
+/// Particles a group's update sees at once: the SIMD kernels' lane groups fit in it.
+constexpr int kGatherChunk = 16;
+
+/// The grid velocity and its gradient (APIC's C) at n <= kGatherChunk particles with stencils
+/// s[0, n), from the padded nodes of the block whose first node is `origin`. The stencil rows run
+/// in SIMD lanes (engine/stencil_lanes.h): the same bits on every target, within float rounding
+/// of gatherVelocity (which sums in another order and serves the double-precision build).
+void gatherChunkVelocities(const Vec4* nodes, const int origin[3], const QuadraticStencil* s, int n, Real invDx,
+                           Vec3* vel, Mat3* C);
+
 /// The interpolated scalar of padded nodes `at` (the stencil's first node) under stencil s.
 inline Real gatherScalar(const Real* at, const QuadraticStencil& s) {
   Real v = 0;
@@ -72,9 +82,6 @@ inline double fbarScale(const Mat3& C, Real dt, double mean) {
   return std::exp((std::log1p(mean) - std::log1p(own)) / 3);
 }
 
-/// Particles a group's update sees at once: the SIMD kernels' lane groups fit in it.
-constexpr int kGatherChunk = 16;
-
 /// What the gather hands a group's update for up to kGatherChunk consecutive particles: their
 /// range and F-bar's scale of each one's deformation increment (1 when that is off). Their v and
 /// C are already in the particle set.
@@ -93,23 +100,22 @@ inline void gatherParticleChunks(const G2PBlock& blk, ParticleSet& P, size_t beg
   const Real invDx = blk.invDx, dt = blk.dt;
   Real maxSpeed2 = stats.maxSpeed * stats.maxSpeed;
   GatheredChunk chunk;
+  QuadraticStencil st[kGatherChunk];
   Vec3 vel[kGatherChunk];
+  Mat3 C[kGatherChunk];
   for (size_t q = begin; q < end; q += kGatherChunk) {
     chunk.first = q;
     chunk.count = int(std::min<size_t>(kGatherChunk, end - q));
+    for (int k = 0; k < chunk.count; ++k) st[k] = QuadraticStencil(P.x[q + size_t(k)] * invDx);
+    gatherChunkVelocities(blk.nodes, blk.origin, st, chunk.count, invDx, vel, C);
     for (int k = 0; k < chunk.count; ++k) {
       const size_t p = q + size_t(k);
-      const QuadraticStencil s(P.x[p] * invDx);
-      const int l0 = s.base[0] - blk.origin[0], l1 = s.base[1] - blk.origin[1],
-                l2 = s.base[2] - blk.origin[2];
-      Mat3 C;
-      gatherVelocity(blk.nodes, s, l0, l1, l2, invDx, vel[k], C);
-      if (blk.old) P.v[p] = vel[k] + blk.flip * (P.v[p] - gatherOld(blk.old + padIndex(l0, l1, l2), s));
+      const QuadraticStencil& s = st[k];
+      const int pad = padIndex(s.base[0] - blk.origin[0], s.base[1] - blk.origin[1], s.base[2] - blk.origin[2]);
+      if (blk.old) P.v[p] = vel[k] + blk.flip * (P.v[p] - gatherOld(blk.old + pad, s));
       else P.v[p] = vel[k];
-      P.C[p] = C;
-      chunk.fbar[k] = blk.meanVolumeChange
-                          ? fbarScale(C, dt, double(gatherScalar(blk.meanVolumeChange + padIndex(l0, l1, l2), s)))
-                          : 1.0;
+      P.C[p] = C[k];
+      chunk.fbar[k] = blk.meanVolumeChange ? fbarScale(C[k], dt, double(gatherScalar(blk.meanVolumeChange + pad, s))) : 1.0;
     }
     update(static_cast<const GatheredChunk&>(chunk));
     for (int k = 0; k < chunk.count; ++k) {

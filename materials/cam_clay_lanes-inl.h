@@ -34,9 +34,9 @@ struct CamClayConstants {
 };
 
 /// p0 = K sinh(xi max(-eps_v, 0)) per lane (libm's sinh, as the scalar model).
-HWY_INLINE V preconsolidation(const CamClayConstants& c, V ev) {
+HWY_INLINE V preconsolidation(const CamClayConstants& c, V ev, M live) {
   const double K = c.bulk, xi = c.xiScalar;
-  return perLane(ev, [K, xi](double e) { return K * std::sinh(xi * std::max(-e, 0.0)); });
+  return perLane(ev, live, [K, xi](double e) { return K * std::sinh(xi * std::max(-e, 0.0)); });
 }
 
 /// CamClayModel::closestOnEllipse for the lanes in `live` (x, y >= 0, outside): Newton on
@@ -127,7 +127,7 @@ HWY_INLINE M hardenNewton(const CamClayConstants& c, V pTr, V qTr, V ev0, V p00,
     qOut = hn::IfThenElse(done, q + dq * dp0 * step, qOut);
     active = hn::AndNot(done, active);
     if (hn::AllFalse(d, active)) break;
-    p0 = hn::IfThenElse(active, preconsolidation(c, ev), p0);
+    p0 = hn::IfThenElse(active, preconsolidation(c, ev, active), p0);
   }
   p = pOut, q = qOut;
   return hn::Or(failed, active);
@@ -144,7 +144,7 @@ HWY_INLINE M returnCamClay(const SolidLaneParams& prm, Sym& eps, V& ev, V& yield
   const Sym dev = plusIdentity(eps, hn::Neg(tr / c.three));
   const V a = hn::Sqrt(norm2(dev, hn::Set(d, 2.0)));
   const V pTr = hn::Neg(c.K) * tr, qTr = hn::Set(d, prm.qScale) * a;
-  const V ev0 = ev, p00 = preconsolidation(c, ev0);
+  const V ev0 = ev, p00 = preconsolidation(c, ev0, live);
   const V slope = hn::IfThenElse(yielded > zero, c.Ms, hn::Set(d, prm.M));
   const V f = qTr * qTr * c.tension + slope * slope * (pTr + c.beta * p00) * (pTr - p00);
   const M plastic = hn::And(live, hn::Not(f <= zero));

@@ -88,14 +88,16 @@ HWY_INLINE Sym expSmall(const Sym& A, M live) {
   return sum;
 }
 
-/// fn (a scalar function such as libm's sinh) of every lane: the same bits on every target.
+/// fn (a scalar function such as libm's sinh) of the lanes in `live`, 0 in the others: the same
+/// bits on every target.
 template <class Fn>
-HWY_INLINE V perLane(V v, Fn fn) {
+HWY_INLINE V perLane(V v, M live, Fn fn) {
   const D d;
-  alignas(64) double buf[8]; // the widest target holds 8 doubles
+  alignas(64) double buf[8], on[8]; // the widest target holds 8 doubles
   static_assert(hn::MaxLanes(D()) <= 8, "a vector of at most 8 doubles");
   hn::Store(v, d, buf);
-  for (size_t i = 0; i < hn::Lanes(d); ++i) buf[i] = fn(buf[i]);
+  hn::Store(hn::IfThenElseZero(live, hn::Set(d, 1.0)), d, on);
+  for (size_t i = 0; i < hn::Lanes(d); ++i) buf[i] = on[i] != 0 ? fn(buf[i]) : 0.0;
   return hn::Load(d, buf);
 }
 

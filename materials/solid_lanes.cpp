@@ -15,6 +15,7 @@
 #include "materials/solid_lanes.h"
 #include "materials/lanes_math-inl.h"
 #include "materials/cam_clay_lanes-inl.h"
+#include "materials/drucker_prager_lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace talus {
@@ -27,28 +28,6 @@ namespace {
 /// Row i, column j of the product of a (row by row) and b.
 HWY_INLINE V product(const V* a, const V* b, int i, int j) {
   return a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-}
-
-/// The return of Drucker–Prager at constant strength in tensor form (the model's project on the
-/// principal strains, which depends on them only through the trace and the deviator's norm).
-/// Returns the plastic lanes; eps becomes the returned strain, `strain` the accumulated one.
-HWY_INLINE M returnDruckerPrager(const SolidLaneParams& prm, Sym& eps, V& strain) {
-  const D d;
-  const V tr = trace(eps), third = tr / hn::Set(d, 3.0);
-  const Sym dev = plusIdentity(eps, hn::Neg(third));
-  const V a = hn::Sqrt(norm2(dev, hn::Set(d, 2.0)));
-  const V pc = hn::Set(d, -prm.bulk) * tr + hn::Set(d, prm.cohesion); // p + c
-  const M plastic = hn::Not(hn::Set(d, prm.qScale) * a - hn::Set(d, prm.gamma) * pc <= hn::Zero(d));
-  if (hn::AllFalse(d, plastic)) return plastic;
-  const M tip = hn::And(plastic, pc <= hn::Zero(d));
-  const V aNew = hn::Set(d, prm.gamma) * pc / hn::Set(d, prm.qScale);
-  const Sym cone = plusIdentity(scale(dev, aNew / a), third);
-  const V tipStrain = hn::Set(d, prm.cohesion / (3 * prm.bulk));
-  const V z = hn::Zero(d);
-  const Sym atTip{tipStrain, tipStrain, tipStrain, z, z, z};
-  eps = select(plastic, select(tip, atTip, cone), eps);
-  strain = hn::IfThenElse(plastic, hn::IfThenElse(tip, strain + a, strain + a - aNew), strain);
-  return plastic;
 }
 
 /// Lanes [i, i + Lanes) of io.
@@ -77,6 +56,8 @@ HWY_INLINE void updateGroup(const SolidLaneParams& prm, V dt, SolidLanes& io, si
   V strain = hn::Load(d, io.strain + i), yielded = hn::Load(d, io.yielded + i);
   M plastic = hn::FirstN(d, 0), handBack = hn::FirstN(d, 0);
   if (prm.kind == SolidLaneParams::Kind::DruckerPrager) plastic = hn::And(usual, returnDruckerPrager(prm, epsNew, strain));
+  if (prm.kind == SolidLaneParams::Kind::SofteningDruckerPrager)
+    plastic = returnSofteningDruckerPrager(prm, epsNew, strain, usual);
   if (prm.kind == SolidLaneParams::Kind::CamClay) {
     plastic = returnCamClay(prm, epsNew, strain, yielded, usual, handBack);
     hn::Store(hn::IfThenElseZero(hn::Or(hn::Not(usual), handBack), one), d, io.scalar + i);
@@ -106,8 +87,6 @@ void UpdateSolidLanes(const SolidLaneParams& prm, double dt, int n, SolidLanes& 
   for (size_t i = 0; i < size_t(n); i += N) updateGroup(prm, hn::Set(d, dt), io, i);
 }
 
-const char* SolidLanesTarget() { return hwy::TargetName(HWY_TARGET); }
-
 } // namespace HWY_NAMESPACE
 } // namespace talus
 HWY_AFTER_NAMESPACE();
@@ -115,13 +94,9 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace talus {
 HWY_EXPORT(UpdateSolidLanes);
-HWY_EXPORT(SolidLanesTarget);
 
 void updateSolidLanes(const SolidLaneParams& params, double dt, int n, SolidLanes& io) {
   HWY_DYNAMIC_DISPATCH(UpdateSolidLanes)(params, dt, n, io);
 }
-const char* solidLanesTarget() { return HWY_DYNAMIC_DISPATCH(SolidLanesTarget)(); }
-std::vector<int64_t> solidLanesTargets() { return hwy::SupportedAndGeneratedTargets(); }
-void useSolidLanesTarget(int64_t target) { hwy::SetSupportedTargetsForTest(target); }
 } // namespace talus
 #endif

@@ -9,10 +9,10 @@
 // It is not bit for bit the scalar updateSolid's (Eigen sums some products in another order): the
 // two agree to the float the results are stored in, within a few units in its last place.
 //
-// Covered: the elastic model, Drucker–Prager without softening (the lab box, rock and debris at
-// constant strength) and Cam Clay (snow), on the usual path (|b - I| <= 0.25, J > 0). A lane
-// outside it, or whose Cam Clay hardening Newton fails, is flagged and its particle takes the
-// scalar updateSolid, as does softening Drucker–Prager.
+// Covered: the elastic model, Drucker–Prager (the lab box, rock and debris, with or without
+// softening) and Cam Clay (snow), on the usual path (|b - I| <= 0.25, J > 0). A lane outside it,
+// or whose Cam Clay hardening Newton fails, is flagged and its particle takes the scalar
+// updateSolid, as does μ(I).
 #pragma once
 
 #include "materials/cam_clay.h"
@@ -31,7 +31,7 @@ constexpr int kSolidLanes = 16;
 /// What the kernel needs of the model: the Hencky moduli and, for Drucker–Prager at constant
 /// strength, the cone (q = gamma (p + c)).
 struct SolidLaneParams {
-  enum class Kind { Elastic, DruckerPrager, CamClay };
+  enum class Kind { Elastic, DruckerPrager, SofteningDruckerPrager, CamClay };
   Kind kind = Kind::Elastic;
   double mu = 0, lambda = 0;
   double bulk = 0;      ///< lambda + 2 mu / 3
@@ -39,6 +39,10 @@ struct SolidLaneParams {
   double gamma = 0;     ///< cone slope
   double cohesion = 0;  ///< c (Pa): tension tip at p = -c
   double M = 0, Ms = 0, beta = 0, xi = 0; ///< Cam Clay: slopes before and after yield, tension ratio, hardening
+  /// Softening Drucker–Prager: initial and residual friction angles (rad), chi, the cone's fit
+  /// (`cohesion` is then the initial one).
+  double frictionAngle = 0, residualFrictionAngle = 0, softening = 0;
+  DruckerPragerCone cone = DruckerPragerCone::Compression;
 };
 
 /// Structure-of-arrays input and output of kSolidLanes particles; matrices row by row (index 3 i + j).
@@ -58,13 +62,7 @@ struct alignas(64) SolidLanes {
 /// Where io.scalar is 1, F, tau and strain are not written: the caller runs updateSolid on Ftrial.
 void updateSolidLanes(const SolidLaneParams& params, double dt, int n, SolidLanes& io);
 
-/// The name of the Highway target updateSolidLanes runs on ("AVX3", "AVX2", "SSE4", "SSSE3" or the portable "SCALAR").
-const char* solidLanesTarget();
-
-/// For tests: the targets compiled in that this machine runs (Highway's target bits), and a way to
-/// make updateSolidLanes run on one of them (0 restores the best).
-std::vector<int64_t> solidLanesTargets();
-void useSolidLanesTarget(int64_t target);
+// The target it runs on, and for tests the choice of another: engine/stencil_lanes.h (simdTargets).
 
 /// Whether Model's update runs in lanes, and with what; false leaves it to the scalar updateSolid.
 inline bool solidLaneParams(const ElasticModel& m, SolidLaneParams& out) {
@@ -72,10 +70,11 @@ inline bool solidLaneParams(const ElasticModel& m, SolidLaneParams& out) {
   return true;
 }
 inline bool solidLaneParams(const DruckerPragerModel& m, SolidLaneParams& out) {
-  if (m.softens()) return false;
   const DruckerPragerParams& p = m.params();
-  out = {SolidLaneParams::Kind::DruckerPrager, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(),
-         std::sqrt(1.5) * 2 * m.elastic.mu, DruckerPragerModel::gammaOf(p.residualFrictionAngle, p.cone), p.cohesion};
+  out = {m.softens() ? SolidLaneParams::Kind::SofteningDruckerPrager : SolidLaneParams::Kind::DruckerPrager,
+         m.elastic.mu, m.elastic.lambda, m.elastic.bulk(), std::sqrt(1.5) * 2 * m.elastic.mu,
+         DruckerPragerModel::gammaOf(p.residualFrictionAngle, p.cone), p.cohesion, 0, 0, 0, 0,
+         p.frictionAngle, p.residualFrictionAngle, p.softening, p.cone};
   return true;
 }
 inline bool solidLaneParams(const CamClayModel& m, SolidLaneParams& out) {

@@ -2,6 +2,7 @@
 // random states, on every Highway target this machine runs.
 #include "materials/mu_i.h"
 #include "materials/solid_lanes.h"
+#include "simd_targets.h"
 
 #include <gtest/gtest.h>
 
@@ -107,15 +108,7 @@ Tally checkAgainstScalar(const Model& model, const RandomStates& states, std::ve
 
 /// Bit for bit the same lanes on every target this machine runs.
 void expectSameOnEveryTarget(const SolidLaneParams& prm, const RandomStates& states, const std::vector<SolidLanes>& best) {
-  const std::vector<int64_t> targets = solidLanesTargets();
-  EXPECT_GE(targets.size(), 2u) << "the portable target and at least one SIMD target";
-  struct Restore {
-    ~Restore() { useSolidLanesTarget(0); } // also when an assertion returns early
-  } restore;
-  for (int64_t target : targets) {
-    useSolidLanesTarget(target);
-    SCOPED_TRACE(solidLanesTarget());
-    std::printf("[ target   ] %s\n", solidLanesTarget());
+  forEachSimdTarget([&] {
     for (size_t c = 0; c < states.chunks.size(); ++c) {
       SolidLanes io = states.chunks[c];
       updateSolidLanes(prm, kDt, states.counts[c], io);
@@ -129,7 +122,7 @@ void expectSameOnEveryTarget(const SolidLaneParams& prm, const RandomStates& sta
         ASSERT_EQ(io.yielded[k], best[c].yielded[k]);
       }
     }
-  }
+  });
 }
 
 /// Both checks for one model; the tally, for the caller to see that the states exercised it.
@@ -182,14 +175,34 @@ TEST(SolidLanes, CamClayMatchesTheScalarReturnAndEveryTargetBitForBit) {
   EXPECT_GT(checkModel(model, states).plastic, 500);
 }
 
-TEST(SolidLanes, SofteningDruckerPragerAndMuIStayOnTheScalarPath) {
-  DruckerPragerParams p;
-  p.softening = 10;
-  p.cohesion = 1e3;
+TEST(SolidLanes, SofteningDruckerPragerMatchesTheScalarNewtonAndEveryTargetBitForBit) {
+  // Table 1's rock (c 2 MPa, phi 50 -> 30 deg) with a gradual softening (chi 20) and brittle
+  // (chi 1e10, Vajont's and Cengalo's: the strength is lost on first yield), on each cone fit;
+  // strains of half the particles start at 0 (intact), the others up to 0.5 (softened).
+  for (double chi : {20.0, 1e10})
+    for (DruckerPragerCone cone : {DruckerPragerCone::Compression, DruckerPragerCone::PlaneStrain, DruckerPragerCone::Extension}) {
+      SCOPED_TRACE(chi);
+      SCOPED_TRACE(int(cone));
+      DruckerPragerParams p;
+      p.frictionAngle = 50 * M_PI / 180, p.residualFrictionAngle = 30 * M_PI / 180;
+      p.cohesion = 2e5, p.softening = chi, p.cone = cone;
+      const DruckerPragerModel model(HenckyElasticity::fromYoung(3e7, 0.25), p);
+      SolidLaneParams prm;
+      ASSERT_TRUE(solidLaneParams(model, prm));
+      EXPECT_EQ(prm.kind, SolidLaneParams::Kind::SofteningDruckerPrager);
+      for (double bias : {-0.01, 0.01}) {
+        RandomStates states(4, bias);
+        for (auto& io : states.chunks)
+          for (int k = 0; k < kSolidLanes; k += 2) io.strain[k] = 0;
+        const Tally t = checkModel(model, states);
+        EXPECT_GT(t.plastic, 300);
+        if (bias > 0) EXPECT_GT(t.tip, 10) << "stretched states return to the tip";
+      }
+    }
+}
+
+TEST(SolidLanes, MuIStaysOnTheScalarPath) {
   SolidLaneParams prm;
-  EXPECT_FALSE(solidLaneParams(DruckerPragerModel(HenckyElasticity::fromYoung(1e8, 0.3), p), prm));
-  p.softening = 0;
-  EXPECT_TRUE(solidLaneParams(DruckerPragerModel(HenckyElasticity::fromYoung(1e8, 0.3), p), prm));
   EXPECT_FALSE(solidLaneParams(MuIModel{}, prm));
 }
 
