@@ -4,6 +4,7 @@
 #include "engine/material_group.h"
 #include "engine/transfer_g2p.h"
 #include "materials/tait_water.h"
+#include "materials/water_lanes.h"
 
 #include <atomic>
 #include <cmath>
@@ -29,9 +30,24 @@ public:
   void gridToParticles(const G2PBlock& blk, size_t begin, size_t end, G2PStats& stats) override {
     const double dt = blk.dt;
     float minDJ = 0;
-    gatherParticles(blk, particles, begin, end, stats, [&](size_t p, const Mat3& C, double) {
-      model.update(dJ[p], C, dt, particles.tau[p]);
-      minDJ = std::min(minDJ, dJ[p]);
+    // The equation of state of 16 particles side by side in SIMD lanes (materials/water_lanes.h).
+    gatherParticleChunks(blk, particles, begin, end, stats, [&](const GatheredChunk& c) {
+      WaterLanes io;
+      for (int k = 0; k < kWaterLanes; ++k) {
+        const bool live = k < c.count;
+        const Mat3& C = particles.C[c.first + size_t(live ? k : 0)];
+        for (int r = 0; r < 9; ++r) io.C[r][k] = live ? double(C(r / 3, r % 3)) : 0.0;
+        io.dJ[k] = live ? double(dJ[c.first + size_t(k)]) : 0.0;
+      }
+      updateWaterLanes(model, dt, c.count, io);
+      for (int k = 0; k < c.count; ++k) {
+        const size_t p = c.first + size_t(k);
+        dJ[p] = float(io.dJ[k]);
+        minDJ = std::min(minDJ, dJ[p]);
+        Sym3& t = particles.tau[p];
+        t.xx = Real(io.tau[0][k]), t.yy = Real(io.tau[1][k]), t.zz = Real(io.tau[2][k]);
+        t.xy = Real(io.tau[3][k]), t.xz = Real(io.tau[4][k]), t.yz = Real(io.tau[5][k]);
+      }
     });
     // This group's most compressed particle of the step (a minimum: independent of block order).
     float cur = stepMinJ_.load(std::memory_order_relaxed);
