@@ -28,6 +28,12 @@ constexpr size_t kGroups = (kRow + kN - 1) / kN; // vectors per row: 1 (AVX-512)
 /// The lanes of vector g that lie inside the row (all but the last vector's tail on AVX2/AVX-512).
 HWY_INLINE hn::Mask<DF> inRow(size_t g) { return hn::FirstN(DF(), kRow - g * kN); }
 
+/// The 4-float record `r` in every node's place of vector g (the record repeated along the row).
+HWY_INLINE VF record(const float* r, size_t g) {
+  if constexpr (kN >= 4) return hn::LoadDup128(DF(), r);
+  else return hn::Load(DF(), r + (g * kN) % 4);
+}
+
 /// The w_k of each lane: w_0 four times, w_1 four times, w_2 four times, then zeros.
 HWY_INLINE void nodeWeights(const float w[3], VF* W) {
   alignas(64) float lanes[16] = {w[0], w[0], w[0], w[0], w[1], w[1], w[1], w[1], w[2], w[2], w[2], w[2], 0, 0, 0, 0};
@@ -64,16 +70,18 @@ void GatherRows(const float* nodes, const StencilRows& s, int n, GatheredRows& o
 
 void ScatterRows(float* buf, const StencilRows& s, const ScatteredRows& q, int n) {
   const DF d;
+  alignas(64) static constexpr float kNode[16] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
   for (int p = 0; p < n; ++p) {
-    VF W[kGroups], a0[kGroups], a1[kGroups], qi[kGroups], ka2[kGroups];
+    VF W[kGroups], q0[kGroups], a0[kGroups], a1[kGroups], qi[kGroups], ka2[kGroups];
     nodeWeights(s.w[p][2], W);
     for (size_t g = 0; g < kGroups; ++g) {
-      a0[g] = hn::Load(d, q.a0[p] + g * kN);
-      a1[g] = hn::Load(d, q.a1[p] + g * kN);
-      ka2[g] = hn::Load(d, q.ka2[p] + g * kN);
+      q0[g] = record(q.q0[p], g);
+      a0[g] = record(q.a0[p], g);
+      a1[g] = record(q.a1[p], g);
+      ka2[g] = hn::Load(d, kNode + g * kN) * record(q.a2[p], g); // 0, a2, 2 a2: exact
     }
     for (int i = 0; i < 3; ++i) {
-      for (size_t g = 0; g < kGroups; ++g) qi[g] = hn::Load(d, q.q0[p] + g * kN) + hn::Set(d, float(i)) * a0[g];
+      for (size_t g = 0; g < kGroups; ++g) qi[g] = q0[g] + hn::Set(d, float(i)) * a0[g];
       for (int j = 0; j < 3; ++j) {
         const VF wij = hn::Set(d, s.w[p][0][i] * s.w[p][1][j]);
         float* row = buf + 4 * size_t(s.first[p] + padIndex(i, j, 0));

@@ -35,13 +35,13 @@ struct GatheredRows {
 void gatherRows(const float* nodes, const StencilRows& s, int n, GatheredRows& out);
 
 /// P2G's momentum rows of one particle: node (i, j, k) of its stencil receives
-/// (w_i w_j) w_k (((q0 + i a0) + j a1) + k a2), as the scalar scatter forms it. Each array holds
-/// the 4-float record three times (q0, a0, a1) or once per node (k a2: 0, a2, 2 a2), then 4 zeros.
+/// (w_i w_j) w_k (((q0 + i a0) + j a1) + k a2), as the scalar scatter forms it; each a 4-float
+/// (mass, momentum) record.
 struct ScatteredRows {
-  alignas(64) float q0[kStencilLanes][16];
-  alignas(64) float a0[kStencilLanes][16];
-  alignas(64) float a1[kStencilLanes][16];
-  alignas(64) float ka2[kStencilLanes][16];
+  alignas(16) float q0[kStencilLanes][4];
+  alignas(16) float a0[kStencilLanes][4];
+  alignas(16) float a1[kStencilLanes][4];
+  alignas(16) float a2[kStencilLanes][4];
 };
 
 /// P2G: adds particles [0, n) of `s` and `q`, in order, into `buf` (a padded buffer of

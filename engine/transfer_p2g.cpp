@@ -113,13 +113,10 @@ void scatterRange(const ParticleSet& P, size_t begin, size_t end, Real volumePer
 #else
       rows.first[c] = padIndex(l[0], l[1], l[2]);
       std::copy_n(&s.w[0][0], 9, &rows.w[c][0][0]);
-      const Vec4 ka2[3] = {Vec4::Zero(), am.a2, Real(2) * am.a2};
-      for (int k = 0; k < 3; ++k) {
-        std::copy_n(am.q0.data(), 4, q.q0[c] + 4 * k);
-        std::copy_n(am.a0.data(), 4, q.a0[c] + 4 * k);
-        std::copy_n(am.a1.data(), 4, q.a1[c] + 4 * k);
-        std::copy_n(ka2[k].data(), 4, q.ka2[c] + 4 * k);
-      }
+      std::copy_n(am.q0.data(), 4, q.q0[c]);
+      std::copy_n(am.a0.data(), 4, q.a0[c]);
+      std::copy_n(am.a1.data(), 4, q.a1[c]);
+      std::copy_n(am.a2.data(), 4, q.a2[c]);
 #endif
       if constexpr (kMomentum || kMass) scatterExtras<kMomentum, kMass>(P, p, s, l, dx, out, mo);
     }

@@ -99,8 +99,8 @@ private:
           io.F[3 * r + q][k] = live ? double(F[p](r, q)) : double(r == q);
         }
       io.fbar[k] = live ? c.fbar[k] : 1.0;
-      io.strain[k] = io.yielded[k] = 0;
-      if (live) laneState(state[p], io.strain[k], io.yielded[k]);
+      io.strain[k] = io.extra[k] = 0;
+      if (live) laneState(state[p], io.strain[k], io.extra[k]);
     }
     updateSolidLanes(prm, dt, c.count, io);
     for (int k = 0; k < c.count; ++k) {
@@ -115,7 +115,7 @@ private:
       Sym3& t = particles.tau[p];
       t.xx = Real(io.tau[0][k]), t.yy = Real(io.tau[1][k]), t.zz = Real(io.tau[2][k]);
       t.xy = Real(io.tau[3][k]), t.xz = Real(io.tau[4][k]), t.yz = Real(io.tau[5][k]);
-      setLaneState(state[p], io.strain[k], io.yielded[k]);
+      setLaneState(state[p], io.strain[k], io.extra[k]);
     }
   }
 };

@@ -16,6 +16,7 @@
 #include "materials/lanes_math-inl.h"
 #include "materials/cam_clay_lanes-inl.h"
 #include "materials/drucker_prager_lanes-inl.h"
+#include "materials/mu_i_lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace talus {
@@ -53,13 +54,14 @@ HWY_INLINE void updateGroup(const SolidLaneParams& prm, V dt, SolidLanes& io, si
 
   const Sym eps = halfLog(X, usual);
   Sym epsNew = eps;
-  V strain = hn::Load(d, io.strain + i), yielded = hn::Load(d, io.yielded + i);
+  V strain = hn::Load(d, io.strain + i), extra = hn::Load(d, io.extra + i); // Cam Clay's flag, μ(I)'s I
   M plastic = hn::FirstN(d, 0), handBack = hn::FirstN(d, 0);
   if (prm.kind == SolidLaneParams::Kind::DruckerPrager) plastic = hn::And(usual, returnDruckerPrager(prm, epsNew, strain));
+  if (prm.kind == SolidLaneParams::Kind::MuI) plastic = returnMuI(prm, dt, epsNew, strain, extra, usual);
   if (prm.kind == SolidLaneParams::Kind::SofteningDruckerPrager)
     plastic = returnSofteningDruckerPrager(prm, epsNew, strain, usual);
   if (prm.kind == SolidLaneParams::Kind::CamClay) {
-    plastic = returnCamClay(prm, epsNew, strain, yielded, usual, handBack);
+    plastic = returnCamClay(prm, epsNew, strain, extra, usual, handBack);
     hn::Store(hn::IfThenElseZero(hn::Or(hn::Not(usual), handBack), one), d, io.scalar + i);
   }
   V Fn[9];
@@ -76,7 +78,7 @@ HWY_INLINE void updateGroup(const SolidLaneParams& prm, V dt, SolidLanes& io, si
   for (int k = 0; k < 9; ++k) hn::Store(Fn[k], d, io.F[k] + i);
   for (int k = 0; k < 6; ++k) hn::Store(tv[k], d, io.tau[k] + i);
   hn::Store(strain, d, io.strain + i);
-  hn::Store(yielded, d, io.yielded + i);
+  hn::Store(extra, d, io.extra + i);
 }
 
 } // namespace

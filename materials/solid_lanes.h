@@ -10,14 +10,15 @@
 // two agree to the float the results are stored in, within a few units in its last place.
 //
 // Covered: the elastic model, Drucker–Prager (the lab box, rock and debris, with or without
-// softening) and Cam Clay (snow), on the usual path (|b - I| <= 0.25, J > 0). A lane outside it,
-// or whose Cam Clay hardening Newton fails, is flagged and its particle takes the scalar
-// updateSolid, as does μ(I).
+// softening), μ(I) and Cam Clay (snow), on the usual path (|b - I| <= 0.25, J > 0). A lane outside
+// it, or whose Cam Clay hardening Newton fails, is flagged and its particle takes the scalar
+// updateSolid.
 #pragma once
 
 #include "materials/cam_clay.h"
 #include "materials/drucker_prager.h"
 #include "materials/elastic.h"
+#include "materials/mu_i.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -31,7 +32,7 @@ constexpr int kSolidLanes = 16;
 /// What the kernel needs of the model: the Hencky moduli and, for Drucker–Prager at constant
 /// strength, the cone (q = gamma (p + c)).
 struct SolidLaneParams {
-  enum class Kind { Elastic, DruckerPrager, SofteningDruckerPrager, CamClay };
+  enum class Kind { Elastic, DruckerPrager, SofteningDruckerPrager, CamClay, MuI };
   Kind kind = Kind::Elastic;
   double mu = 0, lambda = 0;
   double bulk = 0;      ///< lambda + 2 mu / 3
@@ -43,6 +44,8 @@ struct SolidLaneParams {
   /// (`cohesion` is then the initial one).
   double frictionAngle = 0, residualFrictionAngle = 0, softening = 0;
   DruckerPragerCone cone = DruckerPragerCone::Compression;
+  /// μ(I): static and limiting friction coefficients, I0, grain diameter (m) and density (kg/m3).
+  double muS = 0, mu2 = 0, i0 = 0, grainDiameter = 0, grainDensity = 0;
 };
 
 /// Structure-of-arrays input and output of kSolidLanes particles; matrices row by row (index 3 i + j).
@@ -51,7 +54,7 @@ struct alignas(64) SolidLanes {
   double fbar[kSolidLanes];      ///< in: F-bar's scale of the increment (1 when off)
   double F[9][kSolidLanes];      ///< in: elastic F of the last step; out: the new one
   double strain[kSolidLanes];    ///< in/out: plastic strain (Drucker–Prager's e, Cam Clay's eps_v)
-  double yielded[kSolidLanes];   ///< in/out: Cam Clay's flag, 0 or 1
+  double extra[kSolidLanes];     ///< in/out: a second state variable: Cam Clay's yielded flag (0 or 1), μ(I)'s inertial number
   double tau[6][kSolidLanes];    ///< out: Kirchhoff stress xx, yy, zz, xy, xz, yz
   double Ftrial[9][kSolidLanes]; ///< out: (fbar (I + dt C)) F, for the lanes left to the scalar path
   double scalar[kSolidLanes];    ///< out: 1 where the lane is off the usual path, else 0
@@ -84,13 +87,28 @@ inline bool solidLaneParams(const CamClayModel& m, SolidLaneParams& out) {
   return true;
 }
 
-/// Any other model (μ(I), rate-dependent) stays scalar.
+inline bool solidLaneParams(const MuIModel& m, SolidLaneParams& out) {
+  out = SolidLaneParams{};
+  out.kind = SolidLaneParams::Kind::MuI;
+  out.mu = m.elastic.mu, out.lambda = m.elastic.lambda, out.bulk = m.elastic.bulk();
+  out.qScale = std::sqrt(1.5) * 2 * m.elastic.mu;
+  out.muS = m.params.muS, out.mu2 = m.params.mu2, out.i0 = m.params.i0;
+  out.grainDiameter = m.params.grainDiameter, out.grainDensity = m.params.grainDensity;
+  return true;
+}
+/// A model without a lane kernel stays scalar.
 template <class Model>
 bool solidLaneParams(const Model&, SolidLaneParams&) { return false; }
 
 /// The plastic strain and flag a lane carries, read from and written back to a model's state.
 inline void laneState(const DruckerPragerModel::State& s, double& strain, double& flag) { strain = s.plasticStrain, flag = 0; }
 inline void setLaneState(DruckerPragerModel::State& s, double strain, double) { s.plasticStrain = float(strain); }
+inline void laneState(const MuIModel::State& s, double& strain, double& inertial) {
+  strain = s.plasticStrain, inertial = s.inertial;
+}
+inline void setLaneState(MuIModel::State& s, double strain, double inertial) {
+  s.plasticStrain = float(strain), s.inertial = float(inertial);
+}
 inline void laneState(const CamClayModel::State& s, double& strain, double& yielded) {
   strain = s.volumetricPlasticStrain, yielded = s.yielded;
 }

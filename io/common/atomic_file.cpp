@@ -90,6 +90,12 @@ void writeAtomically(const std::string& path, const std::function<void(const std
     std::filesystem::remove(tmp, ec);
   };
   try {
+    // Held open for writing until after the rename: a file system cannot be remounted read-only
+    // while a file on it is open for writing (EBUSY), so it cannot turn read-only between the
+    // writer's close and the rename, which would strand the temporary where it cannot be removed.
+    // Every writer truncates the path it is given, so the guard and the writer share the file.
+    Fd guard{::open(tmp.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666)};
+    if (guard.fd < 0) throw WriteError(path, errnoText(errno));
     write(tmp);
     syncFile(tmp);
     if (::rename(tmp.c_str(), path.c_str()) != 0) throw WriteError(path, errnoText(errno));

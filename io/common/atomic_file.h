@@ -10,7 +10,8 @@
 
 namespace talus {
 
-/// Calls write(path + tmpSuffix), syncs it and renames it to path. Any exception from `write`
+/// Calls write(path + tmpSuffix) (which must truncate the file it is given, not replace it),
+/// syncs it and renames it to path, the temporary held open for writing throughout. Any exception from `write`
 /// (except std::bad_alloc) becomes a WriteError naming `path`; the temporary is removed. Files
 /// that several processes may write at once (the terrain cache) pass a suffix with the pid.
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
