@@ -21,15 +21,15 @@ namespace talus {
 namespace HWY_NAMESPACE {
 namespace lanes {
 
-/// The ellipse's constants, broadcast once per lane group.
+/// The ellipse's constants (the square roots computed once per group, SolidLaneParams), broadcast.
 struct CamClayConstants {
   V K, xi, sK, s3mu, halfTension, halfCentre, Ms, sqrtTension, beta, tension, three;
   double bulk, xiScalar;
   explicit CamClayConstants(const SolidLaneParams& c)
-      : K(hn::Set(D(), c.bulk)), xi(hn::Set(D(), c.xi)), sK(hn::Set(D(), std::sqrt(c.bulk))),
-        s3mu(hn::Set(D(), std::sqrt(3 * c.mu))), halfTension(hn::Set(D(), 0.5 * (1 + c.beta))),
+      : K(hn::Set(D(), c.bulk)), xi(hn::Set(D(), c.xi)), sK(hn::Set(D(), c.sqrtBulk)),
+        s3mu(hn::Set(D(), c.sqrt3mu)), halfTension(hn::Set(D(), 0.5 * (1 + c.beta))),
         halfCentre(hn::Set(D(), 0.5 * (1 - c.beta))), Ms(hn::Set(D(), c.Ms)),
-        sqrtTension(hn::Set(D(), std::sqrt(1 + 2 * c.beta))), beta(hn::Set(D(), c.beta)),
+        sqrtTension(hn::Set(D(), c.sqrtTension)), beta(hn::Set(D(), c.beta)),
         tension(hn::Set(D(), 1 + 2 * c.beta)), three(hn::Set(D(), 3.0)), bulk(c.bulk), xiScalar(c.xi) {}
 };
 

@@ -48,10 +48,16 @@ struct Strength {
   V gamma, dGamma, cohesion, dCohesion;
 };
 
+/// exp(-chi e) per lane: the softened share of the strength that is left.
+HWY_INLINE V decayAt(const SolidLaneParams& prm, V e, M live) {
+  const double chi = prm.softening;
+  return perLane(e, live, [chi](double x) { return std::exp(-chi * x); });
+}
+
 HWY_INLINE Strength strengthAt(const SolidLaneParams& prm, V e, M live) {
   const D d;
   const double chi = prm.softening;
-  const V decay = perLane(e, live, [chi](double x) { return std::exp(-chi * x); });
+  const V decay = decayAt(prm, e, live);
   const V drop = hn::Set(d, prm.frictionAngle - prm.residualFrictionAngle);
   const V phi = hn::Set(d, prm.residualFrictionAngle) + drop * decay;
   const V s = perLane(phi, live, [](double x) { return std::sin(x); });
@@ -87,7 +93,7 @@ HWY_INLINE M returnSofteningDruckerPrager(const SolidLaneParams& prm, Sym& eps, 
   const Strength s0 = strengthAt(prm, e0, live);
   const M plastic = hn::And(live, hn::Not(k * a - s0.gamma * (p + s0.cohesion) <= zero));
   if (hn::AllFalse(d, plastic)) return plastic;
-  const V cFull = strengthAt(prm, e0 + a, plastic).cohesion;
+  const V cFull = hn::Set(d, prm.cohesion) * decayAt(prm, e0 + a, plastic); // c(e0 + a): no sin, cos needed
   const M tip = hn::And(plastic, p + cFull <= zero);
   M active = hn::AndNot(tip, plastic);
   V lo = zero, hi = a;

@@ -40,6 +40,7 @@ struct SolidLaneParams {
   double gamma = 0;     ///< cone slope
   double cohesion = 0;  ///< c (Pa): tension tip at p = -c
   double M = 0, Ms = 0, beta = 0, xi = 0; ///< Cam Clay: slopes before and after yield, tension ratio, hardening
+  double sqrtBulk = 0, sqrt3mu = 0, sqrtTension = 0; ///< Cam Clay: CamClayModel::Scales, once per group
   /// Softening Drucker–Prager: initial and residual friction angles (rad), chi, the cone's fit
   /// (`cohesion` is then the initial one).
   double frictionAngle = 0, residualFrictionAngle = 0, softening = 0;
@@ -68,30 +69,37 @@ void updateSolidLanes(const SolidLaneParams& params, double dt, int n, SolidLane
 // The target it runs on, and for tests the choice of another: engine/stencil_lanes.h (simdTargets).
 
 /// Whether Model's update runs in lanes, and with what; false leaves it to the scalar updateSolid.
+/// The fields every kind shares: the Hencky moduli.
+inline SolidLaneParams henckyLaneParams(SolidLaneParams::Kind kind, const HenckyElasticity& e) {
+  SolidLaneParams out;
+  out.kind = kind;
+  out.mu = e.mu, out.lambda = e.lambda, out.bulk = e.bulk();
+  out.qScale = std::sqrt(1.5) * 2 * e.mu;
+  return out;
+}
 inline bool solidLaneParams(const ElasticModel& m, SolidLaneParams& out) {
-  out = {SolidLaneParams::Kind::Elastic, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(), 0, 0, 0};
+  out = henckyLaneParams(SolidLaneParams::Kind::Elastic, m.elastic);
   return true;
 }
 inline bool solidLaneParams(const DruckerPragerModel& m, SolidLaneParams& out) {
   const DruckerPragerParams& p = m.params();
-  out = {m.softens() ? SolidLaneParams::Kind::SofteningDruckerPrager : SolidLaneParams::Kind::DruckerPrager,
-         m.elastic.mu, m.elastic.lambda, m.elastic.bulk(), std::sqrt(1.5) * 2 * m.elastic.mu,
-         DruckerPragerModel::gammaOf(p.residualFrictionAngle, p.cone), p.cohesion, 0, 0, 0, 0,
-         p.frictionAngle, p.residualFrictionAngle, p.softening, p.cone};
+  out = henckyLaneParams(m.softens() ? SolidLaneParams::Kind::SofteningDruckerPrager : SolidLaneParams::Kind::DruckerPrager,
+                         m.elastic);
+  out.gamma = DruckerPragerModel::gammaOf(p.residualFrictionAngle, p.cone), out.cohesion = p.cohesion;
+  out.frictionAngle = p.frictionAngle, out.residualFrictionAngle = p.residualFrictionAngle;
+  out.softening = p.softening, out.cone = p.cone;
   return true;
 }
 inline bool solidLaneParams(const CamClayModel& m, SolidLaneParams& out) {
   const CamClayParams& c = m.params;
-  out = {SolidLaneParams::Kind::CamClay, m.elastic.mu, m.elastic.lambda, m.elastic.bulk(),
-         std::sqrt(1.5) * 2 * m.elastic.mu, 0, 0, c.M, c.Ms, c.beta, c.xi};
+  const CamClayModel::Scales scales(m);
+  out = henckyLaneParams(SolidLaneParams::Kind::CamClay, m.elastic);
+  out.M = c.M, out.Ms = c.Ms, out.beta = c.beta, out.xi = c.xi;
+  out.sqrtBulk = scales.sK, out.sqrt3mu = scales.s3mu, out.sqrtTension = scales.sqrtTension;
   return true;
 }
-
 inline bool solidLaneParams(const MuIModel& m, SolidLaneParams& out) {
-  out = SolidLaneParams{};
-  out.kind = SolidLaneParams::Kind::MuI;
-  out.mu = m.elastic.mu, out.lambda = m.elastic.lambda, out.bulk = m.elastic.bulk();
-  out.qScale = std::sqrt(1.5) * 2 * m.elastic.mu;
+  out = henckyLaneParams(SolidLaneParams::Kind::MuI, m.elastic);
   out.muS = m.params.muS, out.mu2 = m.params.mu2, out.i0 = m.params.i0;
   out.grainDiameter = m.params.grainDiameter, out.grainDensity = m.params.grainDensity;
   return true;
