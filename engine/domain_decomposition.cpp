@@ -105,11 +105,11 @@ void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
 
 constexpr size_t kKinematicBytes = 2 * sizeof(Vec3) + sizeof(Real);
 
-void packKinematics(const MaterialGroup& g, std::vector<char>& out) {
+void packKinematics(const MaterialGroup& g, std::vector<char>& out, size_t begin, size_t end) {
   const ParticleSet& P = g.particles;
-  out.resize(P.size() * kKinematicBytes);
+  out.resize((end - begin) * kKinematicBytes);
   char* o = out.data();
-  for (size_t p = 0; p < P.size(); ++p) put(o, P.x[p]), put(o, P.v[p]), put(o, P.mass[p]);
+  for (size_t p = begin; p < end; ++p) put(o, P.x[p]), put(o, P.v[p]), put(o, P.mass[p]);
 }
 
 void unpackKinematics(const std::vector<char>& in, MaterialGroup& g) {
@@ -121,7 +121,7 @@ void unpackKinematics(const std::vector<char>& in, MaterialGroup& g) {
   for (size_t p = 0; p < n; ++p) take(s, P.x[p]), take(s, P.v[p]), take(s, P.mass[p]);
 }
 
-size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, Real dx) {
+size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, Real dx, const std::vector<size_t>* fresh) {
   const int n = comm_->size(), me = comm_->rank();
   const Real invDx = Real(1) / dx;
   size_t sent = 0;
@@ -146,15 +146,19 @@ size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, R
     const auto recv = comm_->exchange(send);
     // Only what moves is copied: leavers are compacted out, arrivals appended (lower ranks'
     // first), and binning's stable sort takes the lower ranks' arrivals before our own particles.
+    const size_t made = fresh && gi < fresh->size() ? (*fresh)[gi] : 0;
+    const size_t madeStaying = size_t(std::count(stays.end() - long(made), stays.end(), uint8_t(1)));
     if (leaving) {
       g->particles.forEachArray([&](auto& a) { compactInPlace(a, stays); });
       g->compactState(stays);
     }
-    const size_t own = g->size();
+    const size_t own = g->size(), ownBefore = own - madeStaying;
     for (int r = 0; r < me; ++r) appendParticles(*g, recv[size_t(r)]);
     const size_t lower = g->size() - own;
     for (int r = me + 1; r < n; ++r) appendParticles(*g, recv[size_t(r)]);
-    if (lower) order_[gi] = {{own, own + lower}, {0, own}, {own + lower, g->size()}};
+    // One process's order: lower ranks' particles, ours, higher ranks', then the ones made since.
+    if (lower || madeStaying)
+      order_[gi] = {{own, own + lower}, {0, ownBefore}, {own + lower, g->size()}, {ownBefore, own}};
   }
   return sent;
 }

@@ -39,9 +39,9 @@ inline bool treeOrderLess(const BlockCoord& a, const BlockCoord& b) {
 /// ParticleSet::bytesPerParticle() + g.stateBytesPerParticle() bytes; and records appended to g.
 void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out);
 void appendParticles(MaterialGroup& g, const std::vector<char>& in);
-/// Positions, velocities and masses of all of g's particles (28 bytes each); unpacking resizes g
-/// to the records' count and fills those three arrays only.
-void packKinematics(const MaterialGroup& g, std::vector<char>& out);
+/// Positions, velocities and masses of g's particles [begin, end) (28 bytes each); unpacking
+/// resizes g to the records' count and fills those three arrays only.
+void packKinematics(const MaterialGroup& g, std::vector<char>& out, size_t begin, size_t end);
 void unpackKinematics(const std::vector<char>& in, MaterialGroup& g);
 
 class DomainDecomposition {
@@ -66,7 +66,9 @@ public:
   void setShares(std::vector<double> shares);
   /// Collective. Moves every particle to the rank owning its block (see the file comment).
   /// Returns the number of particles this rank sent away. The next binning must take order().
-  size_t migrate(const std::vector<MaterialGroup*>& groups, Real dx);
+  /// @param fresh  per group, particles made at the arrays' end since the last binning, each on
+  ///               the rank owning its block (they stay): ordered after every rank's others
+  size_t migrate(const std::vector<MaterialGroup*>& groups, Real dx, const std::vector<size_t>* fresh = nullptr);
   /// Per group, the order binning's stable sort must follow after migrate (empty: the arrays').
   const std::vector<ParticleOrder>& order() const { return order_; }
   /// Keeps only the particles of this rank's blocks (every rank holding every particle).

@@ -1,5 +1,8 @@
 #include "engine/erodible_bed.h"
 
+#include "engine/bspline.h"
+#include "engine/domain_decomposition.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -31,31 +34,56 @@ ErodibleBed::ErodibleBed(std::vector<ErodibleCover> covers, std::shared_ptr<cons
   columnWork_.assign(entries_.size(), 0.0);
 }
 
-void ErodibleBed::erode(SparseGrid& grid, double dt) {
+namespace {
+/// Node n of block c: its column (i, j) and its position (local frame).
+void nodeColumn(const BlockCoord& c, int n, int32_t& i, int32_t& j) {
+  i = c.x * kBlockDim + (n >> (2 * kBlockLog2));
+  j = c.y * kBlockDim + ((n >> kBlockLog2) & (kBlockDim - 1));
+}
+Vec3d nodePosition(const BlockCoord& c, int n, double dx) {
+  int32_t i, j;
+  nodeColumn(c, n, i, j);
+  return Vec3d(i, j, c.z * kBlockDim + (n & (kBlockDim - 1))) * dx;
+}
+} // namespace
+
+const std::pair<uint32_t, uint32_t>* ErodibleBed::columnOf(const BlockCoord& c, int n) const {
+  int32_t i, j;
+  nodeColumn(c, n, i, j);
+  const auto it = columns_.find(columnKey(i, j));
+  return it == columns_.end() ? nullptr : &it->second;
+}
+
+double ErodibleBed::nodeShare(const std::pair<uint32_t, uint32_t>& col, double work) const {
+  double dm = 0;
+  for (uint32_t e = col.first; e < col.second; ++e) dm += scratch_[e] * work;
+  return dm;
+}
+
+void ErodibleBed::erode(SparseGrid& grid, double dt, const std::vector<uint8_t>* counted, const ShareNodes& share) {
   const size_t nBlocks = grid.blockCount();
-  std::fill(columnWork_.begin(), columnWork_.end(), 0.0);
   for (Entry& e : entries_) {
     e.idle += dt;
     if (e.pool > 0) e.age += dt;
   }
-  // Calls f(node, column's [first, end), node's work) for every node that did basal work over
-  // a cover, in block then node order.
+  // Calls f(block, node, column's [first, end)) for every node here that did basal work over a
+  // cover, in block then node order.
   auto forEachWorkingNode = [&](auto&& f) {
-    for (size_t b = 0; b < nBlocks; ++b) {
-      const float* w = &work_[b * kBlockNodes];
-      const BlockCoord& c = grid.topology.coord(uint32_t(b));
-      Vec4* nodes = grid.block(uint32_t(b));
-      for (int n = 0; n < kBlockNodes; ++n) {
-        if (!(w[n] > 0.f)) continue;
-        const int32_t i = c.x * kBlockDim + (n >> (2 * kBlockLog2)), j = c.y * kBlockDim + ((n >> kBlockLog2) & 7);
-        const auto it = columns_.find(columnKey(i, j));
-        if (it == columns_.end()) continue;
-        const Vec3d x = Vec3d(i, j, c.z * kBlockDim + (n & 7)) * dx_;
-        f(nodes[n], it->second, double(w[n]), x);
-      }
+    for (uint32_t b = 0; b < nBlocks; ++b) {
+      const float* w = &work_[size_t(b) * kBlockNodes];
+      for (int n = 0; n < kBlockNodes; ++n)
+        if (w[n] > 0.f)
+          if (const auto* col = columnOf(grid.topology.coord(b), n)) f(b, n, *col);
     }
   };
-  forEachWorkingNode([&](Vec4&, std::pair<uint32_t, uint32_t> col, double w, const Vec3d&) { columnWork_[col.first] += w; });
+  std::vector<WorkingNode>& nodes = working_;
+  nodes.clear();
+  forEachWorkingNode([&](uint32_t b, int n, const std::pair<uint32_t, uint32_t>&) {
+    if (!counted || (*counted)[b]) nodes.push_back({grid.topology.coord(b), n, work_[size_t(b) * kBlockNodes + size_t(n)], grid.block(b)[n]});
+  });
+  if (share) share(nodes);
+  std::fill(columnWork_.begin(), columnWork_.end(), 0.0);
+  for (const WorkingNode& wn : nodes) columnWork_[columnOf(wn.block, wn.node)->first] += double(wn.work);
   // Each column's work erodes its covers top first: e_b dm of it per kilogram taken. What a cover
   // takes is stored as its share per joule of the column's work, so the nodes' shares sum to it.
   std::vector<double>& perJoule = scratch_;
@@ -73,27 +101,42 @@ void ErodibleBed::erode(SparseGrid& grid, double dt) {
       perJoule[e] = dm / W;
     }
   }
-  forEachWorkingNode([&](Vec4& node, std::pair<uint32_t, uint32_t> col, double w, const Vec3d& x) {
-    double dmNode = 0;
-    for (uint32_t e = col.first; e < col.second; ++e) dmNode += perJoule[e] * w;
-    if (!(dmNode > 0)) return;
+  // A node of mass m taking dm slows to v m / (m + dm): the same on every rank holding it.
+  auto slowed = [](const Vec4& node, double dm) {
     const double m = double(node[0]);
-    const Vec3 vNew = (node.tail<3>().cast<double>() * (m / (m + dmNode))).cast<Real>();
-    node.tail<3>() = vNew;
+    return Vec3((node.tail<3>().cast<double>() * (m / (m + dm))).cast<Real>());
+  };
+  for (const WorkingNode& wn : nodes) { // the pools, in one process's node order
+    const auto& col = *columnOf(wn.block, wn.node);
+    const double w = double(wn.work), dmNode = nodeShare(col, w);
+    if (!(dmNode > 0)) continue;
+    const Vec3d v = slowed(wn.value, dmNode).cast<double>(), x = nodePosition(wn.block, wn.node, dx_);
     for (uint32_t e = col.first; e < col.second; ++e) {
       const double dm = perJoule[e] * w;
       if (!(dm > 0)) continue;
       Entry& en = entries_[e];
       en.pool += dm;
       en.idle = 0;
-      en.momentum += dm * vNew.cast<double>();
+      en.momentum += dm * v;
       en.moment += dm * x;
     }
+  }
+  forEachWorkingNode([&](uint32_t b, int n, const std::pair<uint32_t, uint32_t>& col) { // every node held here
+    Vec4& node = grid.block(b)[n];
+    const double dmNode = nodeShare(col, double(work_[size_t(b) * kBlockNodes + size_t(n)]));
+    if (dmNode > 0) node.tail<3>() = slowed(node, dmNode);
   });
 }
 
-size_t ErodibleBed::release(const std::vector<MaterialGroup*>& groups) {
-  size_t made = 0;
+size_t ErodibleBed::release(const std::vector<MaterialGroup*>& groups, const std::function<bool(const Vec3&)>& mine) {
+  struct Made {
+    BlockCoord block;
+    int group;
+    Vec3 x, v;
+    Real m;
+  };
+  std::vector<Made> made;
+  const Real invDx = Real(1) / Real(dx_); // as binning has it
   for (Entry& e : entries_) {
     const ErodibleCover& cv = covers_[size_t(e.cover)];
     // A pool's float residue after a particle took its mass stays (about 1e-7 of it).
@@ -105,24 +148,27 @@ size_t ErodibleBed::release(const std::vector<MaterialGroup*>& groups) {
     // On the ground below where the mass came from, a quarter cell up (half a particle spacing).
     const Vec3d at = e.moment / e.pool;
     const Vec3d n = ground_->normal(at, 0.25 * dx_);
-    const Vec3d x = at - ground_->distance(at) * n + 0.25 * dx_ * n;
+    const Vec3 x = (at - ground_->distance(at) * n + 0.25 * dx_ * n).cast<Real>();
     const Vec3d v = e.momentum / e.pool;
-    ParticleSet& P = groups[size_t(cv.group)]->particles;
     const Real m = Real(e.pool);
-    P.x.push_back(x.cast<Real>());
-    P.v.push_back(v.cast<Real>());
-    P.C.push_back(Mat3::Zero());
-    P.tau.push_back(Sym3{});
-    P.mass.push_back(m);
-    groups[size_t(cv.group)]->resizeState(P.size());
+    if (!mine || mine(x)) made.push_back({owningBlock(x, invDx), cv.group, x, v.cast<Real>(), m});
     const double rest = e.pool - double(m);
     e.momentum -= double(m) * v;
     e.moment = rest * at;
     e.pool = rest;
     e.age = 0;
-    ++made;
   }
-  return made;
+  std::stable_sort(made.begin(), made.end(), [](const Made& a, const Made& b) { return treeOrderLess(a.block, b.block); });
+  for (const Made& p : made) {
+    ParticleSet& P = groups[size_t(p.group)]->particles;
+    P.x.push_back(p.x);
+    P.v.push_back(p.v);
+    P.C.push_back(Mat3::Zero());
+    P.tau.push_back(Sym3{});
+    P.mass.push_back(p.m);
+    groups[size_t(p.group)]->resizeState(P.size());
+  }
+  return made.size();
 }
 
 double ErodibleBed::erodedMass(int32_t i, int32_t j, size_t cover) const {

@@ -21,6 +21,7 @@
 #include "engine/sparse_grid.h"
 #include "engine/state_archive.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -56,18 +57,38 @@ public:
   std::vector<float>& basalWork() { return work_; }
   void prepare(size_t blocks) { work_.assign(blocks * kBlockNodes, 0.f); }
 
+  /// A node that did basal work over a cover this step, with its mass and velocity after the
+  /// grid update: what the columns' sums and the pools read.
+  struct WorkingNode {
+    BlockCoord block;
+    int32_t node = 0; ///< index in the block
+    float work = 0;   ///< J
+    Vec4 value;       ///< mass, velocity
+  };
+  /// The ranks' seam: handed this rank's working nodes (of the blocks it counts), leaves every
+  /// rank's in one process's order (blocks in tree order, then nodes). Empty for one process.
+  using ShareNodes = std::function<void(std::vector<WorkingNode>&)>;
+
   /// After the grid update: takes each column's eroded mass, slows its contact nodes so that
   /// momentum is conserved, and adds mass and momentum to the columns' pools. Deterministic: the
-  /// nodes are visited in block order.
-  void erode(SparseGrid& grid, double dt);
+  /// sums run over the nodes in block (tree) then node order, on one process or shared by the
+  /// ranks, so every rank keeps the same columns and pools (they are replicated) and slows the
+  /// nodes it holds alike.
+  /// @param counted  on ranks, per block, 1 where this rank adds the block's sums (each block on
+  ///                 one rank); null: every block
+  void erode(SparseGrid& grid, double dt, const std::vector<uint8_t>* counted = nullptr, const ShareNodes& share = {});
   /// After G2P: a pool becomes one particle of its cover's group (appended, model state
   /// undeformed) when it holds a particle's mass, when its column is eroded to the ground, when
   /// its column has eroded nothing for as long as the pool's mass takes to travel kWaitCells cells
   /// (the flow has passed), or when it has waited kMaxWaits times that (a deposit creeping on,
   /// eroding a little, releases a pool now and then rather than a small particle every step).
-  /// Returns the particles made.
+  /// Particles are appended in tree order of their blocks (pools' order within a block), so new
+  /// particles made by the ranks, each for its own blocks, are one process's in rank order.
+  /// @param mine  on ranks, whether this rank makes the particle at x (it owns x's block); every
+  ///              rank updates every pool alike. Empty: one process, which makes them all.
+  /// Returns the particles made here.
   static constexpr double kWaitCells = 4, kMaxWaits = 8;
-  size_t release(const std::vector<MaterialGroup*>& groups);
+  size_t release(const std::vector<MaterialGroup*>& groups, const std::function<bool(const Vec3&)>& mine = {});
 
   /// Per cover: mass given at the start, still on the ground, and waiting in pools (kg).
   double initialMass(size_t cover) const;
@@ -107,7 +128,11 @@ private:
   double dx_;
   std::vector<Entry> entries_;
   std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> columns_; ///< key -> [first, end) entries
+  const std::pair<uint32_t, uint32_t>* columnOf(const BlockCoord& c, int n) const; ///< null: no cover
+  double nodeShare(const std::pair<uint32_t, uint32_t>& col, double work) const;  ///< kg a node takes
+
   std::vector<float> work_;
+  std::vector<WorkingNode> working_; ///< scratch: this step's working nodes
   std::vector<double> columnWork_; ///< scratch: per column (at its first entry), the work this step
   std::vector<double> scratch_;    ///< scratch: per entry, the mass it gives per joule of its column's work
 };

@@ -1,6 +1,7 @@
 #include "engine/simulation.h"
 
 #include "engine/particle_cull.h"
+#include "engine/bspline.h"
 
 #include "engine/fbar.h"
 #include "engine/grid_update.h"
@@ -154,6 +155,7 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.bin);
     binParticles(groupPtrs_, grid_, reorder_, &periodic_);
   }
+  fresh_.clear(); // binned among the others
   {
     ScopedTimer t(times_.colliders);
     for (auto& c : colliders_) c->prepare(grid_.topology, settings_.dx, time_ + dt);
@@ -185,7 +187,7 @@ double Simulation::step(double dtCap) {
     if (bed_) bed_->prepare(grid_.blockCount()), prm.basalWork = bed_->basalWork().data();
     updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
     if (periodic_.any()) periodic_.unfold(grid_);
-    if (bed_) bed_->erode(grid_, dt); // entrainment: the eroded mass slows the nodes it joins
+    if (bed_) bed_->erode(grid_, dt, ranks_ ? &halo_.counted() : nullptr, shareWorkingNodes()); // entrainment
   }
   if (ranks_) {
     ScopedTimer t(times_.halo);
@@ -204,7 +206,6 @@ double Simulation::step(double dtCap) {
   time_ += dt;
   ++steps_;
   for (auto* g : groupPtrs_) g->afterStep();
-  if (bed_) bed_->release(groupPtrs_); // pools of eroded mass become particles
   if (ranks_) { // the step's figures over the ranks, merged into two collectives
     ScopedTimer t(times_.halo);
     reduceStepFigures(stats, stepped);
@@ -216,8 +217,9 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.cull);
     cullEscaped();
   }
-  // Secondary releases, inflows, detrainment: after the cull, which wraps periodic axes, so a
-  // source sees every particle inside the domain.
+  // Pools of eroded mass, secondary releases, inflows, detrainment: after the cull, which wraps
+  // periodic axes, so a source sees every particle inside the domain.
+  if (bed_) releaseEroded();
   for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_);
   return dt;
 }
@@ -266,6 +268,16 @@ void Simulation::checkFinite(size_t nonFinite) const {
 void Simulation::cullEscaped() {
   const CullBox box = cullBox(settings_.domain, settings_.faces, periodic_, settings_.dx);
   for (auto* g : groupPtrs_) massRemoved_[size_t(g->index())] += cullOutside(*g, box, periodic_, Real(settings_.dx));
+}
+
+void Simulation::releaseEroded() {
+  std::vector<size_t> before;
+  for (const auto* g : groupPtrs_) before.push_back(g->size());
+  std::function<bool(const Vec3&)> mine; // on ranks, each makes the particles of its own blocks
+  if (ranks_) mine = [this](const Vec3& x) { return ranks_->owner(owningBlock(x, Real(1) / grid_.dx)) == ranks_->rank(); };
+  bed_->release(groupPtrs_, mine);
+  fresh_.resize(groupPtrs_.size());
+  for (size_t g = 0; g < groupPtrs_.size(); ++g) fresh_[g] = groupPtrs_[g]->size() - before[g];
 }
 
 size_t Simulation::particleCount() const {

@@ -83,7 +83,7 @@ struct SimulationSettings {
   std::vector<StructureSpec> structures;
   std::vector<PanelSpec> panels;    ///< on closed, non-periodic faces
   /// Erodible covers thinner than a cell, as fields on the terrain (engine/erodible_bed.h); the
-  /// Simulation moves them into bed(). One process, no periodic axes.
+  /// Simulation moves them into bed(). Any rank count; no periodic axes.
   std::vector<ErodibleCover> covers;
   /// Where particles enter after the start: secondary releases, inflow hydrographs
   /// (engine/particle_source.h), called in this order after every step. One process.
@@ -212,6 +212,8 @@ private:
   void reduceLoads(Real dt);
   void reduceStepFigures(G2PStats& stats, size_t& particles);
   void buildColumnsOnRanks();
+  void releaseEroded();
+  ErodibleBed::ShareNodes shareWorkingNodes(); ///< empty for one process
   [[noreturn]] void checkFiniteOnRanks() const;
   std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty
 
@@ -236,6 +238,9 @@ private:
   std::unique_ptr<DomainDecomposition> ranks_;
   HaloExchange halo_;
   std::unique_ptr<ErodibleBed> bed_;
+  /// Per group: particles the bed appended at the arrays' end since the last binning (binning on
+  /// ranks puts them after every rank's particles, where one process has them).
+  std::vector<size_t> fresh_;
 };
 
 } // namespace talus

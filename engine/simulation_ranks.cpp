@@ -69,9 +69,6 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
                             const std::vector<std::vector<uint64_t>>* seedIndex) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
   if (settings_.fbar) throw std::invalid_argument("[simulation] fbar does not run on several ranks yet (run without mpirun)");
-  if (bed_)
-    throw std::invalid_argument("erodible covers thinner than their field_below do not run on several ranks yet (run "
-                                "without mpirun, or set field_below = 0 on the body for a cover of particles)");
   if (!settings_.sources.empty())
     throw std::invalid_argument("secondary releases, inflows and forests' detrainment do not run on several ranks yet (run without mpirun, "
                                 "or set detrainment = 0 in the resistance regions)");
@@ -103,7 +100,7 @@ size_t Simulation::globalParticleCount() const {
 
 void Simulation::binAndBalance() {
   auto t0 = std::chrono::steady_clock::now();
-  ranks_->migrate(groupPtrs_, grid_.dx);
+  ranks_->migrate(groupPtrs_, grid_.dx, &fresh_);
   times_.halo += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
   binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
@@ -197,6 +194,22 @@ void Simulation::buildColumnsOnRanks() {
   columns_.build(flows);
 }
 
+ErodibleBed::ShareNodes Simulation::shareWorkingNodes() {
+  if (!ranks_) return {};
+  return [this](std::vector<ErodibleBed::WorkingNode>& nodes) {
+    // Every rank's nodes, each from the rank counting its block, in tree order, then node order
+    // (each rank's nodes of a block are in node order already, and a block is on one rank).
+    using Node = ErodibleBed::WorkingNode;
+    std::vector<char> mine(nodes.size() * sizeof(Node));
+    if (!nodes.empty()) std::memcpy(mine.data(), nodes.data(), mine.size());
+    std::vector<size_t> counts;
+    const std::vector<char> all = ranks_->comm().allGather(mine, counts);
+    nodes.resize(all.size() / sizeof(Node));
+    if (!nodes.empty()) std::memcpy(static_cast<void*>(nodes.data()), all.data(), all.size());
+    std::stable_sort(nodes.begin(), nodes.end(), [](const Node& a, const Node& b) { return treeOrderLess(a.block, b.block); });
+  };
+}
+
 void Simulation::reduceStepFigures(G2PStats& stats, size_t& particles) {
   // Two collectives per step for everything the ranks must agree on after G2P: the minima (the
   // largest speed as the smallest -speed, and each group's per-rank minima, e.g. the stiffest
@@ -238,16 +251,26 @@ void Simulation::gatherInto(Simulation* view, GatherScope scope) {
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
     const MaterialGroup& g = *groupPtrs_[gi];
-    std::vector<char> mine;
-    if (scope == GatherScope::Whole) {
-      std::vector<uint32_t> all(g.size());
-      for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
-      packParticles(g, all, mine);
-    } else {
-      packKinematics(g, mine);
+    // The particles the bed made since binning come after every rank's others, as one process
+    // has them: gathered as a second part when there is a bed.
+    const size_t fresh = gi < fresh_.size() ? fresh_[gi] : 0;
+    auto gatherRange = [&](size_t begin, size_t end) {
+      std::vector<char> mine;
+      if (scope == GatherScope::Whole) {
+        std::vector<uint32_t> idx(end - begin);
+        for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(begin + i);
+        packParticles(g, idx, mine);
+      } else {
+        packKinematics(g, mine, begin, end);
+      }
+      std::vector<size_t> counts;
+      return comm.gather(mine, counts);
+    };
+    std::vector<char> gathered = gatherRange(0, g.size() - fresh);
+    if (bed_) {
+      const std::vector<char> made = gatherRange(g.size() - fresh, g.size());
+      gathered.insert(gathered.end(), made.begin(), made.end());
     }
-    std::vector<size_t> counts;
-    const std::vector<char> gathered = comm.gather(mine, counts);
     if (!view) continue;
     MaterialGroup& to = *view->groupPtrs_[gi];
     if (scope == GatherScope::Whole) {
@@ -264,6 +287,7 @@ void Simulation::gatherInto(Simulation* view, GatherScope scope) {
   if (!view) return;
   view->time_ = time_, view->steps_ = steps_, view->particleSteps_ = particleSteps_, view->maxSpeed_ = maxSpeed_;
   view->loads_ = loads_;
+  if (bed_) *view->bed_ = *bed_; // replicated on every rank
   view->massRemoved_ = removed;
   view->times_ = times_;
 }

@@ -2,12 +2,14 @@
 // at M, and a killed rank ends the job with the last checkpoint intact. Skipped without mpirun.
 #include "small_collapse.h"
 #include "process_support.h"
+#include "terrain_test_support.h"
 #include "test_support.h"
 
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
+#include <sstream>
 
 using namespace talus;
 namespace fs = std::filesystem;
@@ -86,6 +88,52 @@ TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
   // The four ranks' last checkpoint (t = 0.11 s), resumed at two ranks, ends where one process did.
   ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --resume " + dir + "/four", out), 0) << out;
   expectSameFiles(dir + "/one", dir + "/four");
+}
+
+TEST(RunOnRanks, AnErodibleFieldsRunAtTwoRanksWritesOneProcesssFiles) {
+  // A snow slab sliding down a 30-degree DEM over a 0.2 m cover (0.4 cells: a field, issue 40):
+  // the erosion-depth map, the entrained-mass series and the particles the pools made are one
+  // process's at two ranks, and its checkpoint (written at two ranks) resumes at one.
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  test::useTestTerrainCache();
+  const std::string dir = test::tempDir("ranks_erodible");
+  constexpr double X0 = 2600000, Y0 = 1200000;
+  writeDemGeoTiff(test::makeDem(80, 40, 0.5, X0, Y0, [](double x, double) { return 1000 - 0.57735 * (x - X0); }),
+                  dir + "/slope.tif");
+  auto box = [&](double x0, double y0, double x1, double y1) {
+    char b[160];
+    std::snprintf(b, sizeof b, "[%.3f, %.3f, %.3f, %.3f]", X0 + x0, Y0 + y0, X0 + x1, Y0 + y1);
+    return std::string(b);
+  };
+  const std::string scene = dir + "/erodible.toml";
+  std::ofstream(scene) << "[simulation]\ndx = 0.5\nend_time = 2\n[terrain]\ndem = \"" + dir +
+                              "/slope.tif\"\nboundary = \"friction\"\nfriction = 0.2\n[[materials]]\nname = \"snow\"\n"
+                              "model = \"elastic\"\ndensity = 300\nyoungs_modulus = 1e6\n[[materials]]\nname = \"cover\"\n"
+                              "model = \"elastic\"\ndensity = 100\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"release\"\n"
+                              "kind = \"layer\"\nmaterial = \"snow\"\nthickness = 2\nbounds = " + box(4, 6, 8, 14) +
+                              "\n[[bodies]]\nname = \"cover\"\nkind = \"layer\"\nmaterial = \"cover\"\nthickness = 0.2\n"
+                              "thickness_direction = \"vertical\"\nerosion_energy = 200\nbounds = " + box(8.5, 5, 30, 15) +
+                              "\n[output]\nframe_interval = 0.5\ncheckpoint_interval = 0.4\nmaps = true\n";
+  std::string out;
+  ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
+  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/two", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/two");
+  const std::string summary = bytes(dir + "/one/summary.json");
+  EXPECT_NE(summary.find("\"erodible_fields\""), std::string::npos) << "the cover was not made a field";
+  // The slab took part of the cover (the last column of series.csv's last row: entrained kg).
+  std::ifstream series(dir + "/one/series.csv");
+  std::string header, line, last;
+  std::getline(series, header);
+  while (std::getline(series, line)) last = line;
+  const size_t column = size_t(std::count(header.begin(), header.begin() + long(header.find("entrained_mass_kg_field_cover")), ','));
+  std::stringstream cells(last);
+  std::string cell;
+  for (size_t k = 0; k <= column; ++k) std::getline(cells, cell, ',');
+  EXPECT_GT(std::stod(cell), 100.0) << "too little entrained for the test to see the field's ranks";
+  EXPECT_TRUE(fs::exists(dir + "/two/maps/erosion_depth.tif"));
+  // The two ranks' last checkpoint (t = 1.6 s), resumed at one process, ends where one process did.
+  ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --resume " + dir + "/two", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/two");
 }
 
 TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {
