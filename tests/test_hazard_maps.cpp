@@ -301,3 +301,63 @@ TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {
       EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.f);
     }
 }
+
+TEST(OutputMaps, ACoverThatOnlyCreptReadsNoErosionAndAStripTakenReadsItsDepth) {
+  // Issue 40: a cover of particles that only crept (moved unevenly by fractions of a particle
+  // spacing) changes its mass per map cell by a per cent or so; on Flüela that made a speckle of
+  // 1 mm - 5 cm over half the "eroded" cells of a 4 m cover. min_erosion_fraction (2 %) leaves
+  // it out; a strip taken away keeps its full depth. Here: a 0.4 m snow slab of kSlabs (no
+  // gravity, nothing steps), its particles displaced along x by A sin(2 pi x / L) with A k = 1 %
+  // (a 1 % strain, as the creep), and the particles of 1.2 < x < 1.8 m (local) given no mass.
+  const auto sim = test::makeSimulation(kSlabs);
+  RunContext run;
+  run.origin = sim->settings().origin;
+  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
+  const RasterGrid grid = HazardMaps::domainGrid(run, 0.2);
+  auto erosionAfter = [&](double fraction, bool strip) {
+    auto s = test::makeSimulation(kSlabs);
+    MapSettings ms;
+    ms.enabled = true;
+    ms.quicklook = false;
+    ms.erodible = {"snow"};
+    ms.minErosionFraction = fraction;
+    HazardMaps maps(test::tempDir("maps_creep"), grid, nullptr, ms);
+    maps.onStart(*s);
+    ParticleSet& P = s->groups()[0]->particles;
+    const double L = 0.8, A = 0.01 * L / (2 * M_PI);
+    for (size_t p = 0; p < P.size(); ++p) {
+      const double x = P.x[p].x();
+      P.x[p].x() = Real(x + A * std::sin(2 * M_PI * x / L));
+      if (strip && x > 1.2 && x < 1.8) P.mass[p] = 0;
+    }
+    maps.onFinish(*s, true);
+    return maps.raster(HazardMaps::Erosion);
+  };
+  // Cells wholly inside the slab (0.4-2.4 x 0.4-1.2 m local, the splat reaching one cell).
+  auto cellsInside = [&](auto&& f) {
+    for (int r = 0; r < grid.ny; ++r)
+      for (int c = 0; c < grid.nx; ++c) {
+        const double x = grid.cellCentreX(c) - run.origin.x(), y = grid.cellCentreY(r) - run.origin.y();
+        if (x > 0.6 && x < 2.2 && y > 0.6 && y < 1.0) f(x, grid.index(c, r));
+      }
+  };
+  const std::vector<float> raw = erosionAfter(0, false), kept = erosionAfter(0.02, false), taken = erosionAfter(0.02, true);
+  float rawLargest = 0, keptLargest = 0;
+  size_t cells = 0, stripCells = 0;
+  cellsInside([&](double x, size_t i) {
+    rawLargest = std::max(rawLargest, raw[i]), keptLargest = std::max(keptLargest, kept[i]);
+    ++cells;
+    // Inside the strip, a cell away from its edges by the splat's reach reads the slab's 0.4 m.
+    // (The splat reaches a cell on each side: the cell centred 0.3 m inside the strip.)
+    if (x > 1.39 && x < 1.61) {
+      EXPECT_NEAR(taken[i], 0.4, 0.02) << x;
+      ++stripCells;
+    }
+    if (x < 1.01 || x > 1.99) EXPECT_EQ(taken[i], 0.f) << x;
+  });
+  std::printf("  %zu cells: the creep reads up to %.4f m of erosion at fraction 0, %.4f m at 0.02\n", cells, rawLargest, keptLargest);
+  ASSERT_GT(cells, 10u);
+  EXPECT_GT(stripCells, 0u);
+  EXPECT_GT(rawLargest, 0.001f) << "the creep must show without the threshold, or this test cannot fail";
+  EXPECT_EQ(keptLargest, 0.f);
+}

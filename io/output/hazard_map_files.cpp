@@ -76,9 +76,12 @@ void HazardMaps::onFinish(const Simulation& sim, bool completed) {
     if (!settings_.erodible.empty()) {
       m.thickness(sim, m.erodibleGroup, finalErodible);
       m.erosion.assign(size_t(m.layers), std::vector<float>(m.cells, 0.f));
+      const float least = float(settings_.minErosionFraction);
       for (int l = 0; l < m.layers; ++l)
-        for (size_t c = 0; c < m.cells; ++c)
-          m.erosion[size_t(l)][c] = std::max(0.f, m.initial[size_t(l)][c] - finalErodible[size_t(l)][c]);
+        for (size_t c = 0; c < m.cells; ++c) {
+          const float before = m.initial[size_t(l)][c], lost = before - finalErodible[size_t(l)][c];
+          m.erosion[size_t(l)][c] = lost > least * before ? lost : 0.f; // creep is not erosion
+        }
     }
     if (sim.bed()) addBedErosion(m, sim);
   }

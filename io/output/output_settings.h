@@ -83,6 +83,10 @@ struct MapSettings {
   double minSpeed = 0;
   double interval = 0;       ///< s between accumulations; 0 = every step
   std::vector<std::string> erodible; ///< materials whose lost thickness is erosion depth
+  /// Erosion depth counts where an erodible cover of particles lost more than this fraction of
+  /// its initial thickness: a cover that only crept or settled (moved unevenly by fractions of a
+  /// particle spacing) changes its mass per map cell by a per cent or so, which is not erosion.
+  double minErosionFraction = 0.02;
   PeakFileSettings peakFiles;
   AnimationSettings animation;
 };

@@ -85,6 +85,7 @@ void readMaps(const ConfigTable& out, const std::vector<std::string>& materialNa
   m.minSpeed = t->positive("min_speed", 0, true);
   m.interval = t->positive("interval", 0, true);
   m.erodible = readMaterialList(*t, "erodible", materialNames);
+  m.minErosionFraction = t->inRange("min_erosion_fraction", m.minErosionFraction, 0, 1);
 }
 
 /// `animation = true` or `animation = { interval, quantity, fps, max }` (docs/outputs.md).
