@@ -40,6 +40,10 @@ void DomainDecomposition::balance(std::vector<std::pair<BlockCoord, uint64_t>> b
       first_[size_t(r++ - 1)] = c;
     before += count;
   }
+  // What these ranges leave: the floor of the next rebalance's trigger (wantsRebalance).
+  std::vector<double> counts(size_t(n), 0.0);
+  for (const auto& [c, count] : blocks) counts[size_t(owner(c))] += double(count);
+  settled_ = std::max(0.0, imbalanceOf(counts));
 }
 
 void DomainDecomposition::setShares(std::vector<double> shares) {
@@ -48,13 +52,30 @@ void DomainDecomposition::setShares(std::vector<double> shares) {
 }
 
 double DomainDecomposition::imbalance(size_t localParticles) const {
-  const double total = double(comm_->sumOf(localParticles));
-  if (total <= 0) return 0;
-  const double share = shares_.empty() ? 1.0 / comm_->size() : shares_[size_t(comm_->rank())];
-  // A rank meant to hold nothing that holds something is as unbalanced as it gets.
-  const double mine = share > 0 ? double(localParticles) / (share * total) : localParticles ? 1e30 : 0;
-  return comm_->maxOf(mine) - 1;
+  // One collective: every rank's count, as a sum of vectors each holding one rank's (exact in
+  // doubles below 2^53), then the total and the largest ratio on every rank alike.
+  const int n = comm_->size();
+  std::vector<double> counts(size_t(n), 0.0);
+  counts[size_t(comm_->rank())] = double(localParticles);
+  comm_->sum(counts.data(), counts.size());
+  return imbalanceOf(counts);
 }
+
+double DomainDecomposition::imbalanceOf(const std::vector<double>& counts) const {
+  const size_t n = counts.size();
+  double total = 0;
+  for (double c : counts) total += c;
+  if (total <= 0) return 0;
+  double largest = 0;
+  for (size_t r = 0; r < n; ++r) {
+    const double share = shares_.empty() ? 1.0 / double(n) : shares_[r];
+    // A rank meant to hold nothing that holds something is as unbalanced as it gets.
+    largest = std::max(largest, share > 0 ? counts[r] / (share * total) : counts[r] > 0 ? 1e30 : 0);
+  }
+  return largest - 1;
+}
+
+bool DomainDecomposition::wantsRebalance(double imbalance) const { return imbalance > threshold_ + settled_; }
 
 namespace {
 

@@ -83,11 +83,17 @@ public:
   /// the rank's share of the total.
   double imbalance(size_t localParticles) const;
   double threshold() const { return threshold_; }
+  /// Whether an imbalance calls for new ranges: above the threshold by more than what the last
+  /// rebalance left (blocks are indivisible, so a few heavy blocks can keep a rank above the
+  /// threshold whatever the ranges; without this it would rebalance every step).
+  bool wantsRebalance(double imbalance) const;
   uint64_t rebalances = 0;
 
 private:
   std::shared_ptr<Communicator> comm_;
   double threshold_;
+  double settled_ = 0; ///< the imbalance the last balance() left
+  double imbalanceOf(const std::vector<double>& counts) const;
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
   std::vector<double> shares_;    ///< empty: equal
   std::vector<ParticleOrder> order_;

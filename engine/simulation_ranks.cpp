@@ -106,7 +106,7 @@ void Simulation::binAndBalance() {
   binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
   times_.bin += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  if (ranks_->imbalance(particleCount()) > ranks_->threshold()) {
+  if (ranks_->wantsRebalance(ranks_->imbalance(particleCount()))) {
     // New ranges from every rank's blocks; the order of the particles across ranks is unchanged.
     ranks_->balance(allBlockCounts(ranks_->comm(), blockCounts(grid_, groupPtrs_)));
     ranks_->migrate(groupPtrs_, grid_.dx);
