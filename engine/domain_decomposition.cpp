@@ -44,6 +44,7 @@ void DomainDecomposition::balance(std::vector<std::pair<BlockCoord, uint64_t>> b
   std::vector<double> counts(size_t(n), 0.0);
   for (const auto& [c, count] : blocks) counts[size_t(owner(c))] += double(count);
   settled_ = std::max(0.0, imbalanceOf(counts));
+  sinceBalance_ = 0;
 }
 
 void DomainDecomposition::setShares(std::vector<double> shares) {
@@ -75,7 +76,10 @@ double DomainDecomposition::imbalanceOf(const std::vector<double>& counts) const
   return largest - 1;
 }
 
-bool DomainDecomposition::wantsRebalance(double imbalance) const { return imbalance > threshold_ + settled_; }
+bool DomainDecomposition::wantsRebalance(double imbalance) {
+  ++sinceBalance_;
+  return imbalance > threshold_ && (imbalance > threshold_ + settled_ || sinceBalance_ >= kRetrySteps);
+}
 
 namespace {
 

@@ -83,16 +83,20 @@ public:
   /// the rank's share of the total.
   double imbalance(size_t localParticles) const;
   double threshold() const { return threshold_; }
-  /// Whether an imbalance calls for new ranges: above the threshold by more than what the last
-  /// rebalance left (blocks are indivisible, so a few heavy blocks can keep a rank above the
-  /// threshold whatever the ranges; without this it would rebalance every step).
-  bool wantsRebalance(double imbalance) const;
+  /// Called once per step: whether an imbalance calls for new ranges. Above the threshold by
+  /// more than what the last ranges left, or above it at all kRetrySteps steps after them (blocks
+  /// are indivisible, so a few heavy blocks can keep a rank above the threshold whatever the
+  /// ranges: rebalancing at every step then buys nothing; as the flow spreads over more blocks
+  /// the retry finds the better ranges).
+  static constexpr int kRetrySteps = 64;
+  bool wantsRebalance(double imbalance);
   uint64_t rebalances = 0;
 
 private:
   std::shared_ptr<Communicator> comm_;
   double threshold_;
   double settled_ = 0; ///< the imbalance the last balance() left
+  int sinceBalance_ = 0; ///< steps since then
   double imbalanceOf(const std::vector<double>& counts) const;
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
   std::vector<double> shares_;    ///< empty: equal
