@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -32,12 +34,28 @@ struct CamClayParams {
 
 struct CamClayModel {
   static constexpr const char* kName = "cam_clay";
-  struct State {
-    float volumetricPlasticStrain = 0; ///< eps_v (negative when compacted)
-    uint8_t yielded = 0;
-    // Explicit, always zero: a copy then copies every byte, so checkpoints and the records ranks
-    // exchange are the same bytes whichever process wrote them (implicit padding is garbage).
-    uint8_t unused[3] = {0, 0, 0};
+  /// eps_v (negative when compacted) and the first-yield flag in one float: eps_v rounded to a
+  /// float whose last mantissa bit is the flag, so a particle takes 128 bytes (issue 36; a flag
+  /// byte and its padding made 132). The flag costs eps_v at most one float ulp (1.2e-7 relative)
+  /// where storing it as a float at all costs half of one.
+  class State {
+  public:
+    float volumetricPlasticStrain() const { return value_; }
+    bool yielded() const { return bits() & 1u; }
+    void set(double epsV, bool yielded) {
+      value_ = float(epsV);
+      uint32_t b = bits();
+      b = (b & ~1u) | uint32_t(yielded);
+      std::memcpy(&value_, &b, sizeof b);
+    }
+
+  private:
+    uint32_t bits() const {
+      uint32_t b;
+      std::memcpy(&b, &value_, sizeof b);
+      return b;
+    }
+    float value_ = 0;
   };
 
   HenckyElasticity elastic;
@@ -47,7 +65,7 @@ struct CamClayModel {
   double initialVolumetricStrain() const { return -std::asinh(params.p0 / elastic.bulk()) / params.xi; }
   double preconsolidation(double epsV) const { return preconsolidation(epsV, elastic.bulk()); }
   double preconsolidation(double epsV, double K) const { return K * std::sinh(params.xi * std::max(-epsV, 0.0)); }
-  double slope(const State& s) const { return s.yielded ? params.Ms : params.M; }
+  double slope(const State& s) const { return s.yielded() ? params.Ms : params.M; }
 
   double yield(double p, double q, double p0, double M) const {
     return q * q * (1 + 2 * params.beta) + M * M * (p + params.beta * p0) * (p - p0);
@@ -55,13 +73,15 @@ struct CamClayModel {
   double yield(const Vec3d& eps, const State& s) const {
     const double tr = eps.sum();
     const double q = std::sqrt(1.5) * 2 * elastic.mu * (eps - Vec3d::Constant(tr / 3)).norm();
-    return yield(-elastic.bulk() * tr, q, preconsolidation(s.volumetricPlasticStrain), slope(s));
+    return yield(-elastic.bulk() * tr, q, preconsolidation(s.volumetricPlasticStrain()), slope(s));
   }
 
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
   static std::vector<std::string> stateScalarNames() { return {"yielded", "volumetric_plastic_strain"}; }
-  static float stateScalar(const State& s, size_t i) { return i == 0 ? float(s.yielded) : s.volumetricPlasticStrain; }
+  float stateScalar(const State& s, const Sym3&, size_t i) const {
+    return i == 0 ? float(s.yielded()) : s.volumetricPlasticStrain();
+  }
 
   /// Closest point (px, py) on the ellipse (x/A)^2 + (y/B)^2 = 1 to (x, y), x, y >= 0, outside.
   /// t is the root's parameter (below): on entry a guess (the last projection's, or 0 for
@@ -160,12 +180,11 @@ struct CamClayModel {
     const double tr = eps.sum(), pTr = -K * tr;
     const Vec3d dev = eps - Vec3d::Constant(tr / 3);
     const double a = dev.norm(), qTr = k * a;
-    const double ev0 = s.volumetricPlasticStrain, p00 = preconsolidation(ev0);
+    const double ev0 = s.volumetricPlasticStrain(), p00 = preconsolidation(ev0);
     if (yield(pTr, qTr, p00, slope(s)) <= 0) return false;
     double ev, p, q;
     if (!hardenNewton(pTr, qTr, ev0, p00, ev, p, q)) hardenBracketed(pTr, qTr, ev0, p00, ev, p, q);
-    s.volumetricPlasticStrain = float(ev);
-    s.yielded = 1;
+    s.set(ev, true);
     eps = Vec3d::Constant(-p / (3 * K)) + (a > 0 ? q / qTr : 0.0) * dev;
     return true;
   }

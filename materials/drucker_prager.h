@@ -85,7 +85,7 @@ struct DruckerPragerModel {
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
   static std::vector<std::string> stateScalarNames() { return {"plastic_strain"}; }
-  static float stateScalar(const State& s, size_t) { return s.plasticStrain; }
+  float stateScalar(const State& s, const Sym3&, size_t) const { return s.plasticStrain; }
 
   /// Constant strength (no softening): gamma and c need no trigonometry per particle.
   bool softens() const {

@@ -20,7 +20,7 @@ struct ElasticModel {
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
   static std::vector<std::string> stateScalarNames() { return {}; }
-  static float stateScalar(const State&, size_t) { return 0; }
+  float stateScalar(const State&, const Sym3&, size_t) const { return 0; }
 };
 
 } // namespace talus

@@ -15,6 +15,7 @@
 #include "materials/hencky.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,8 @@ struct MuIModel {
   static constexpr const char* kName = "mu_i";
   struct State {
     float plasticStrain = 0; ///< accumulated deviatoric plastic Hencky strain
-    float inertial = 0;      ///< inertial number I of the last step (0 when not flowing)
+    // The inertial number is not stored: the return leaves the stress on the cone of this step's
+    // I, so inertialFromStress reads it back (4 bytes a particle: 128 in all, issue 36).
   };
 
   HenckyElasticity elastic;
@@ -49,7 +51,24 @@ struct MuIModel {
   Vec3d stress(const Vec3d& eps, const State&) const { return elastic.stress(eps); }
   double waveSpeed(double rho) const { return elastic.waveSpeed(rho); }
   static std::vector<std::string> stateScalarNames() { return {"plastic_strain", "inertial_number"}; }
-  static float stateScalar(const State& s, size_t k) { return k == 0 ? s.plasticStrain : s.inertial; }
+  float stateScalar(const State& s, const Sym3& tau, size_t k) const {
+    return k == 0 ? s.plasticStrain : float(inertialFromStress(tau));
+  }
+
+  /// The inertial number of the step that left Kirchhoff stress tau: mu = q / (sqrt(3) p) inverted,
+  /// I = I0 (mu - mu_s) / (mu_2 - mu); 0 inside the static cone (not flowing) or at p <= 0 (the
+  /// tip). From a float stress its error is about 1e-7 I0 / (mu_2 - mu), 1e-7 near mu_s.
+  double inertialFromStress(const Sym3& tau) const {
+    const double p = -(double(tau.xx) + double(tau.yy) + double(tau.zz)) / 3;
+    if (!(p > 0)) return 0;
+    const double dx = tau.xx + p, dy = tau.yy + p, dz = tau.zz + p;
+    const double dev2 = dx * dx + dy * dy + dz * dz +
+                        2 * (double(tau.xy) * tau.xy + double(tau.xz) * tau.xz + double(tau.yz) * tau.yz);
+    const double mu = std::sqrt(1.5 * dev2) / (std::sqrt(3.0) * p);
+    if (mu <= params.muS) return 0;
+    if (mu >= params.mu2) return std::numeric_limits<double>::infinity(); // only by rounding: I -> infinity
+    return params.i0 * (mu - params.muS) / (params.mu2 - mu);
+  }
 
   /// Return mapping at time step dt; true when eps was changed.
   bool project(Vec3d& eps, State& s, double dt) const {
@@ -61,13 +80,9 @@ struct MuIModel {
     if (pK <= 0) { // no confinement: the stress-free tip
       eps.setZero();
       s.plasticStrain += float(a);
-      s.inertial = 0;
       return true;
     }
-    if (k * a <= sq3 * params.muS * pK) {
-      s.inertial = 0;
-      return false;
-    }
+    if (k * a <= sq3 * params.muS * pK) return false;
     // I = c x with c = sqrt(2) d / (dt sqrt(p / rho_s)); p is the Cauchy pressure (Kirchhoff / J).
     const double p = pK * std::exp(-tr);
     const double c = std::sqrt(2.0) * params.grainDiameter / (dt * std::sqrt(p / params.grainDensity));
@@ -79,7 +94,6 @@ struct MuIModel {
     x = std::min(std::max(x, 0.0), a);
     eps = Vec3d::Constant(tr / 3) + (a > 0 ? (a - x) / a : 0.0) * dev;
     s.plasticStrain += float(x);
-    s.inertial = float(c * x);
     return true;
   }
 };

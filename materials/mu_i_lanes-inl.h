@@ -21,9 +21,8 @@ namespace HWY_NAMESPACE {
 namespace lanes {
 
 /// MuIModel::project for the lanes in `live`, in tensor form. eps: the strain, returned; strain:
-/// the accumulated plastic strain; inertial: I of this step (0 when not flowing), written for
-/// every live lane. Returns the lanes whose strain changed.
-HWY_INLINE M returnMuI(const SolidLaneParams& prm, V dt, Sym& eps, V& strain, V& inertial, M live) {
+/// the accumulated plastic strain. Returns the lanes whose strain changed.
+HWY_INLINE M returnMuI(const SolidLaneParams& prm, V dt, Sym& eps, V& strain, M live) {
   const D d;
   const V zero = hn::Zero(d), k = hn::Set(d, prm.qScale), sq3 = hn::Set(d, std::sqrt(3.0));
   const V tr = trace(eps), third = tr / hn::Set(d, 3.0);
@@ -32,7 +31,6 @@ HWY_INLINE M returnMuI(const SolidLaneParams& prm, V dt, Sym& eps, V& strain, V&
   const V pK = hn::Set(d, -prm.bulk) * tr; // Kirchhoff pressure
   const M tip = hn::And(live, pK <= zero);  // no confinement: the stress-free tip
   const M sliding = hn::AndNot(tip, hn::And(live, hn::Not(k * a <= sq3 * hn::Set(d, prm.muS) * pK)));
-  inertial = hn::IfThenElse(live, zero, inertial);
   if (!hn::AllFalse(d, sliding)) {
     // I = c x, c = sqrt(2) d / (dt sqrt(p / rho_s)), p = pK / J the Cauchy pressure.
     const V p = pK * perLane(hn::Neg(tr), sliding, [](double x) { return std::exp(x); });
@@ -47,7 +45,6 @@ HWY_INLINE M returnMuI(const SolidLaneParams& prm, V dt, Sym& eps, V& strain, V&
     x = hn::Min(hn::Max(x, zero), a);
     eps = select(sliding, plusIdentity(scale(dev, hn::IfThenElseZero(a > zero, (a - x) / a)), third), eps);
     strain = hn::IfThenElse(sliding, strain + x, strain);
-    inertial = hn::IfThenElse(sliding, c * x, inertial);
   }
   eps = select(tip, Sym{zero, zero, zero, zero, zero, zero}, eps);
   strain = hn::IfThenElse(tip, strain + a, strain);

@@ -78,7 +78,7 @@ public:
     const auto names = Model::stateScalarNames();
     for (size_t k = 0; k < names.size(); ++k)
       if (names[k] == name)
-        for (size_t i = 0; i < size(); ++i) out[i] = Model::stateScalar(state[i], k);
+        for (size_t i = 0; i < size(); ++i) out[i] = model.stateScalar(state[i], particles.tau[i], k);
   }
 
   size_t stateBytesPerParticle() const override {

@@ -54,10 +54,10 @@ HWY_INLINE void updateGroup(const SolidLaneParams& prm, V dt, SolidLanes& io, si
 
   const Sym eps = halfLog(X, usual);
   Sym epsNew = eps;
-  V strain = hn::Load(d, io.strain + i), extra = hn::Load(d, io.extra + i); // Cam Clay's flag, μ(I)'s I
+  V strain = hn::Load(d, io.strain + i), extra = hn::Load(d, io.extra + i); // Cam Clay's flag
   M plastic = hn::FirstN(d, 0), handBack = hn::FirstN(d, 0);
   if (prm.kind == SolidLaneParams::Kind::DruckerPrager) plastic = hn::And(usual, returnDruckerPrager(prm, epsNew, strain));
-  if (prm.kind == SolidLaneParams::Kind::MuI) plastic = returnMuI(prm, dt, epsNew, strain, extra, usual);
+  if (prm.kind == SolidLaneParams::Kind::MuI) plastic = returnMuI(prm, dt, epsNew, strain, usual);
   if (prm.kind == SolidLaneParams::Kind::SofteningDruckerPrager)
     plastic = returnSofteningDruckerPrager(prm, epsNew, strain, usual);
   if (prm.kind == SolidLaneParams::Kind::CamClay) {

@@ -55,7 +55,7 @@ struct alignas(64) SolidLanes {
   double fbar[kSolidLanes];      ///< in: F-bar's scale of the increment (1 when off)
   double F[9][kSolidLanes];      ///< in: elastic F of the last step; out: the new one
   double strain[kSolidLanes];    ///< in/out: plastic strain (Drucker–Prager's e, Cam Clay's eps_v)
-  double extra[kSolidLanes];     ///< in/out: a second state variable: Cam Clay's yielded flag (0 or 1), μ(I)'s inertial number
+  double extra[kSolidLanes];     ///< in/out: a second state variable: Cam Clay's yielded flag (0 or 1)
   double tau[6][kSolidLanes];    ///< out: Kirchhoff stress xx, yy, zz, xy, xz, yz
   double Ftrial[9][kSolidLanes]; ///< out: (fbar (I + dt C)) F, for the lanes left to the scalar path
   double scalar[kSolidLanes];    ///< out: 1 where the lane is off the usual path, else 0
@@ -111,17 +111,13 @@ bool solidLaneParams(const Model&, SolidLaneParams&) { return false; }
 /// The plastic strain and flag a lane carries, read from and written back to a model's state.
 inline void laneState(const DruckerPragerModel::State& s, double& strain, double& flag) { strain = s.plasticStrain, flag = 0; }
 inline void setLaneState(DruckerPragerModel::State& s, double strain, double) { s.plasticStrain = float(strain); }
-inline void laneState(const MuIModel::State& s, double& strain, double& inertial) {
-  strain = s.plasticStrain, inertial = s.inertial;
-}
-inline void setLaneState(MuIModel::State& s, double strain, double inertial) {
-  s.plasticStrain = float(strain), s.inertial = float(inertial);
-}
+inline void laneState(const MuIModel::State& s, double& strain, double& flag) { strain = s.plasticStrain, flag = 0; }
+inline void setLaneState(MuIModel::State& s, double strain, double) { s.plasticStrain = float(strain); }
 inline void laneState(const CamClayModel::State& s, double& strain, double& yielded) {
-  strain = s.volumetricPlasticStrain, yielded = s.yielded;
+  strain = s.volumetricPlasticStrain(), yielded = s.yielded();
 }
 inline void setLaneState(CamClayModel::State& s, double strain, double yielded) {
-  s.volumetricPlasticStrain = float(strain), s.yielded = uint8_t(yielded != 0);
+  s.set(strain, yielded != 0);
 }
 template <class State>
 void laneState(const State&, double& strain, double& yielded) {

@@ -127,7 +127,14 @@ void expectSameOnEveryTarget(const SolidLaneParams& prm, const RandomStates& sta
 
 /// Both checks for one model; the tally, for the caller to see that the states exercised it.
 template <class Model>
-Tally checkModel(const Model& model, const RandomStates& states) {
+Tally checkModel(const Model& model, RandomStates states) {
+  // The lanes start from what a state stores (Cam Clay's eps_v carries its flag in the last bit).
+  for (auto& chunk : states.chunks)
+    for (int k = 0; k < kSolidLanes; ++k) {
+      typename Model::State s{};
+      setLaneState(s, chunk.strain[k], chunk.extra[k]);
+      laneState(s, chunk.strain[k], chunk.extra[k]);
+    }
   std::vector<SolidLanes> out;
   const Tally t = checkAgainstScalar(model, states, out);
   EXPECT_GT(t.usual, 1000);

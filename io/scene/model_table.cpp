@@ -108,7 +108,7 @@ std::unique_ptr<MaterialGroup> buildCamClay(const MaterialReader& r, const Group
   m.params.beta = r.nonNegative("tension_ratio", 0.0);
   m.params.xi = r.positive("hardening");
   auto g = std::make_unique<SolidGroup<CamClayModel>>(h.name, h.index, h.density, m);
-  g->initialState.volumetricPlasticStrain = float(m.initialVolumetricStrain());
+  g->initialState.set(m.initialVolumetricStrain(), false);
   return g;
 }
 
