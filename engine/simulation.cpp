@@ -1,4 +1,5 @@
 #include "engine/simulation.h"
+#include "engine/simulation_phases.h"
 
 #include "engine/particle_cull.h"
 #include "engine/bspline.h"
@@ -59,7 +60,10 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
   initialMass_ = totalMass();
   for (auto* g : groupPtrs_)
     for (const Vec3& v : g->particles.v) maxSpeed_ = std::max(maxSpeed_, double(v.norm()));
+  phases_ = std::make_unique<LocalPhases>(*this);
 }
+
+Simulation::~Simulation() = default;
 
 void Simulation::buildColliders() {
   // Order of action on a node: the terrain, structures at rest, the faces (as the walls always
@@ -131,11 +135,7 @@ double Simulation::stableDt() const {
   double wave = maxWaveSpeed(), limit = std::numeric_limits<double>::infinity();
   for (const auto* g : groupPtrs_)
     if (g->size()) limit = std::min(limit, g->stableDtLimit(settings_.dx));
-  if (ranks_) { // one collective: the largest wave speed as the smallest -wave
-    double v[2] = {-wave, limit};
-    ranks_->comm().minimum(v, 2);
-    wave = -v[0], limit = v[1];
-  }
+  phases_->agreeOnDt(wave, limit);
   const double speed = wave + maxSpeed_;
   double dt = speed > 0 ? settings_.cfl * settings_.dx / speed : settings_.maxDt;
   // With no wave speed and no motion yet, gravity alone sets the scale: move at most cfl*dx.
@@ -149,49 +149,22 @@ double Simulation::stableDt() const {
 double Simulation::step(double dtCap) {
   const double dt = std::min(stableDt(), dtCap);
   const Real rdt = Real(dt);
-  if (ranks_) {
-    binAndBalance();
-  } else {
-    ScopedTimer t(times_.bin);
-    binParticles(groupPtrs_, grid_, reorder_, &periodic_);
-  }
+  phases_->bin();
   fresh_.clear(); // binned among the others
+  prepareColliders(dt);
+  const HaloExchange* halo;
   {
-    ScopedTimer t(times_.colliders);
-    for (auto& c : colliders_) c->prepare(grid_.topology, settings_.dx, time_ + dt);
-  }
-  if (ranks_) {
     ScopedTimer t(times_.halo);
-    halo_.exchange(groupPtrs_, grid_, rdt, *ranks_);
+    halo = phases_->exchangeHalo(rdt);
   }
   {
     ScopedTimer t(times_.p2g);
-    particlesToGrid(groupPtrs_, grid_, rdt, ranks_ ? &halo_ : nullptr);
+    particlesToGrid(groupPtrs_, grid_, rdt, halo);
   }
+  updateGrid(dt, phases_->counted());
   {
-    ScopedTimer t(times_.grid);
-    GridUpdateParams prm;
-    prm.dt = rdt;
-    // Smooth (cosine) ramp: its residual ringing falls as (T / ramp)^2, a linear one's as T / ramp.
-    const double s = settings_.gravityRamp > 0 ? std::min(1.0, (time_ + dt) / settings_.gravityRamp) : 1.0;
-    const double ramp = 0.5 * (1 - std::cos(M_PI * s));
-    prm.gravity = (ramp * settings_.gravity).cast<Real>();
-    prm.damping = Real(settings_.damping);
-    prm.materialLaws = &materialLaws_;
-    prm.counted = ranks_ ? &halo_.counted() : nullptr;
-    if (periodic_.any()) periodic_.fold(grid_);
-    if (needsThickness_) {
-      if (ranks_) buildColumnsOnRanks();
-      else columns_.build(grid_, 0);
-    }
-    if (bed_) bed_->prepare(grid_.blockCount()), prm.basalWork = bed_->basalWork().data();
-    updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
-    if (periodic_.any()) periodic_.unfold(grid_);
-    if (bed_) bed_->erode(grid_, dt, ranks_ ? &halo_.counted() : nullptr, shareWorkingNodes()); // entrainment
-  }
-  if (ranks_) {
     ScopedTimer t(times_.halo);
-    reduceLoads(rdt);
+    phases_->reduceLoads(rdt);
   }
   if (grid_.fbarChannel >= 0) {
     ScopedTimer t(times_.g2p);
@@ -206,9 +179,9 @@ double Simulation::step(double dtCap) {
   time_ += dt;
   ++steps_;
   for (auto* g : groupPtrs_) g->afterStep();
-  if (ranks_) { // the step's figures over the ranks, merged into two collectives
+  {
     ScopedTimer t(times_.halo);
-    reduceStepFigures(stats, stepped);
+    phases_->reduceStepFigures(stats, stepped);
   }
   particleSteps_ += stepped;
   maxSpeed_ = stats.maxSpeed;
@@ -222,6 +195,30 @@ double Simulation::step(double dtCap) {
   if (bed_) releaseEroded();
   for (auto& src : settings_.sources) src->emit(grid_, time_, dt, groupPtrs_);
   return dt;
+}
+
+void Simulation::prepareColliders(double dt) {
+  ScopedTimer t(times_.colliders);
+  for (auto& c : colliders_) c->prepare(grid_.topology, settings_.dx, time_ + dt);
+}
+
+void Simulation::updateGrid(double dt, const std::vector<uint8_t>* counted) {
+  ScopedTimer t(times_.grid);
+  GridUpdateParams prm;
+  prm.dt = Real(dt);
+  // Smooth (cosine) ramp: its residual ringing falls as (T / ramp)^2, a linear one's as T / ramp.
+  const double s = settings_.gravityRamp > 0 ? std::min(1.0, (time_ + dt) / settings_.gravityRamp) : 1.0;
+  const double ramp = 0.5 * (1 - std::cos(M_PI * s));
+  prm.gravity = (ramp * settings_.gravity).cast<Real>();
+  prm.damping = Real(settings_.damping);
+  prm.materialLaws = &materialLaws_;
+  prm.counted = counted;
+  if (periodic_.any()) periodic_.fold(grid_);
+  if (needsThickness_) phases_->buildColumns();
+  if (bed_) bed_->prepare(grid_.blockCount()), prm.basalWork = bed_->basalWork().data();
+  updateGridVelocities(grid_, prm, colliderPtrs_, time_ + dt, needsThickness_ ? &columns_ : nullptr, loads_);
+  if (periodic_.any()) periodic_.unfold(grid_);
+  if (bed_) bed_->erode(grid_, dt, counted, phases_->shareWorkingNodes()); // entrainment
 }
 
 double Simulation::stepToward(double t) {
@@ -259,10 +256,17 @@ std::string Simulation::nonFiniteMessage() const {
 }
 
 void Simulation::checkFinite(size_t nonFinite) const {
-  if (!nonFinite) return;
-  if (ranks_) checkFiniteOnRanks();
-  const std::string m = nonFiniteMessage();
-  throw NumericalError(m.empty() ? "non-finite particle state at step " + std::to_string(steps_) : m);
+  if (nonFinite) phases_->throwNonFinite();
+}
+
+void Simulation::LocalPhases::bin() {
+  ScopedTimer t(sim_.times_.bin);
+  binParticles(sim_.groupPtrs_, sim_.grid_, sim_.reorder_, &sim_.periodic_);
+}
+
+void Simulation::LocalPhases::throwNonFinite() const {
+  const std::string m = sim_.nonFiniteMessage();
+  throw NumericalError(m.empty() ? "non-finite particle state at step " + std::to_string(sim_.steps_) : m);
 }
 
 void Simulation::cullEscaped() {
@@ -273,9 +277,7 @@ void Simulation::cullEscaped() {
 void Simulation::releaseEroded() {
   std::vector<size_t> before;
   for (const auto* g : groupPtrs_) before.push_back(g->size());
-  std::function<bool(const Vec3&)> mine; // on ranks, each makes the particles of its own blocks
-  if (ranks_) mine = [this](const Vec3& x) { return ranks_->owner(owningBlock(x, Real(1) / grid_.dx)) == ranks_->rank(); };
-  bed_->release(groupPtrs_, mine);
+  bed_->release(groupPtrs_, phases_->makesHere()); // on ranks, each makes the particles of its own blocks
   fresh_.resize(groupPtrs_.size());
   for (size_t g = 0; g < groupPtrs_.size(); ++g) fresh_[g] = groupPtrs_[g]->size() - before[g];
 }

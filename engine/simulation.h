@@ -109,6 +109,9 @@ public:
 class Simulation {
 public:
   Simulation(SimulationSettings settings, std::vector<std::unique_ptr<MaterialGroup>> groups);
+  ~Simulation();
+  Simulation(const Simulation&) = delete; // the step's phases hold a reference to it
+  Simulation& operator=(const Simulation&) = delete;
 
   /// Collective over comm's ranks: from here on this process holds and steps only the particles
   /// of its range of blocks (engine/domain_decomposition.h). Every rank must have built the same
@@ -205,16 +208,17 @@ public:
   void load(const StateArchive& a);
 
 private:
+  // The step's parts that differ between one process and MPI ranks (engine/simulation_phases.h).
+  class Phases;
+  class LocalPhases;
+  class RankPhases;
+
   void buildColliders();
+  void prepareColliders(double dt);
+  void updateGrid(double dt, const std::vector<uint8_t>* counted);
   void cullEscaped();
   void checkFinite(size_t nonFinite) const;
-  void binAndBalance();
-  void reduceLoads(Real dt);
-  void reduceStepFigures(G2PStats& stats, size_t& particles);
-  void buildColumnsOnRanks();
   void releaseEroded();
-  ErodibleBed::ShareNodes shareWorkingNodes(); ///< empty for one process
-  [[noreturn]] void checkFiniteOnRanks() const;
   std::string nonFiniteMessage() const; ///< the first non-finite particle here, or empty
 
   SimulationSettings settings_;
@@ -237,6 +241,7 @@ private:
   PhaseTimes times_;
   std::unique_ptr<DomainDecomposition> ranks_;
   HaloExchange halo_;
+  std::unique_ptr<Phases> phases_; ///< LocalPhases, or RankPhases once distributed
   std::unique_ptr<ErodibleBed> bed_;
   /// Per group: particles the bed appended at the arrays' end since the last binning (binning on
   /// ranks puts them after every rank's particles, where one process has them).

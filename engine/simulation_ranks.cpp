@@ -1,6 +1,8 @@
-// The parts of the step that only MPI ranks run: distribution, migration with rebalancing, and
-// the reduction of collider loads (engine/domain_decomposition.h, engine/halo_exchange.h).
+// The step on MPI ranks: distribution, and RankPhases (engine/simulation_phases.h): migration with
+// rebalancing, the P2G halo, the thickness lines, the erodible bed's nodes and the reductions
+// (engine/domain_decomposition.h, halo_exchange.h); the gather for rank 0's outputs.
 #include "engine/simulation.h"
+#include "engine/simulation_phases.h"
 
 #include "engine/bspline.h"
 #include "engine/particle_binning.h"
@@ -73,6 +75,7 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
     throw std::invalid_argument("secondary releases, inflows and forests' detrainment do not run on several ranks yet (run without mpirun, "
                                 "or set detrainment = 0 in the resistance regions)");
   ranks_ = std::make_unique<DomainDecomposition>(std::move(comm), imbalance);
+  phases_ = std::make_unique<RankPhases>(*this);
   if (!seedIndex) {
     // Every rank holds every particle here: the same binning everywhere gives the same ranges.
     binParticles(groupPtrs_, grid_, reorder_, &periodic_);
@@ -98,73 +101,88 @@ size_t Simulation::globalParticleCount() const {
   return ranks_ ? size_t(ranks_->comm().sumOf(particleCount())) : particleCount();
 }
 
-void Simulation::binAndBalance() {
+void Simulation::RankPhases::agreeOnDt(double& wave, double& limit) const {
+  double v[2] = {-wave, limit}; // one collective: the largest wave speed as the smallest -wave
+  sim_.ranks_->comm().minimum(v, 2);
+  wave = -v[0], limit = v[1];
+}
+
+const HaloExchange* Simulation::RankPhases::exchangeHalo(Real dt) {
+  sim_.halo_.exchange(sim_.groupPtrs_, sim_.grid_, dt, *sim_.ranks_);
+  return &sim_.halo_;
+}
+
+std::function<bool(const Vec3&)> Simulation::RankPhases::makesHere() const {
+  const Simulation& s = sim_;
+  return [&s](const Vec3& x) { return s.ranks_->owner(owningBlock(x, Real(1) / s.grid_.dx)) == s.ranks_->rank(); };
+}
+
+void Simulation::RankPhases::bin() {
+  Simulation& s = sim_;
   auto t0 = std::chrono::steady_clock::now();
-  ranks_->migrate(groupPtrs_, grid_.dx, &fresh_);
-  times_.halo += secondsSince(t0);
+  s.ranks_->migrate(s.groupPtrs_, s.grid_.dx, &s.fresh_);
+  s.times_.halo += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
-  times_.bin += secondsSince(t0);
+  binParticles(s.groupPtrs_, s.grid_, s.reorder_, &s.periodic_, &s.ranks_->order());
+  s.times_.bin += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  if (ranks_->wantsRebalance(ranks_->imbalance(particleCount()))) {
+  if (s.ranks_->wantsRebalance(s.ranks_->imbalance(s.particleCount()))) {
     // New ranges from every rank's blocks; the order of the particles across ranks is unchanged.
-    ranks_->balance(allBlockCounts(ranks_->comm(), blockCounts(grid_, groupPtrs_)));
-    ranks_->migrate(groupPtrs_, grid_.dx);
-    ++ranks_->rebalances;
-    times_.halo += secondsSince(t0);
+    s.ranks_->balance(allBlockCounts(s.ranks_->comm(), blockCounts(s.grid_, s.groupPtrs_)));
+    s.ranks_->migrate(s.groupPtrs_, s.grid_.dx);
+    ++s.ranks_->rebalances;
+    s.times_.halo += secondsSince(t0);
     t0 = std::chrono::steady_clock::now();
-    binParticles(groupPtrs_, grid_, reorder_, &periodic_, &ranks_->order());
-    times_.bin += secondsSince(t0);
+    binParticles(s.groupPtrs_, s.grid_, s.reorder_, &s.periodic_, &s.ranks_->order());
+    s.times_.bin += secondsSince(t0);
   } else {
-    times_.halo += secondsSince(t0);
+    s.times_.halo += secondsSince(t0);
   }
 }
 
-void Simulation::reduceLoads(Real dt) {
+void Simulation::RankPhases::reduceLoads(Real dt) {
+  Simulation& s = sim_;
   // One process adds every block's loads in block (tree) order. Each block's loads are counted
   // on one rank; rank 0 gathers the blocks that took any load and adds them in the same order,
   // so the loads are one process's, bit for bit (blocks without load add exact zeros there).
-  const size_t K = loads_.size(), rec = sizeof(BlockCoord) + 6 * K * sizeof(double);
+  const size_t K = s.loads_.size(), rec = sizeof(BlockCoord) + 6 * K * sizeof(double);
   if (!K) return;
-  const auto& counted = halo_.counted();
+  const auto& counted = s.halo_.counted();
   std::vector<char> mine;
-  for (uint32_t b = 0; b < grid_.blockCount(); ++b) {
-    const double* a = &grid_.contactImpulse[size_t(b) * K * 6];
+  for (uint32_t b = 0; b < s.grid_.blockCount(); ++b) {
+    const double* a = &s.grid_.contactImpulse[size_t(b) * K * 6];
     if (!counted[b] || std::all_of(a, a + 6 * K, [](double v) { return v == 0; })) continue;
-    appendBlockRecord(mine, grid_.topology.coord(b), {{a, 6 * K * sizeof(double)}});
+    appendBlockRecord(mine, s.grid_.topology.coord(b), {{a, 6 * K * sizeof(double)}});
   }
   std::vector<size_t> counts;
-  const std::vector<char> all = ranks_->comm().gather(mine, counts);
-  if (ranks_->rank() != 0) return; // only rank 0 reports loads (its outputs)
+  const std::vector<char> all = s.ranks_->comm().gather(mine, counts);
+  if (s.ranks_->rank() != 0) return; // only rank 0 reports loads (its outputs)
   const auto blocks = recordsInTreeOrder(all, rec);
-  loads_.assign(K, ColliderLoad{});
+  s.loads_.assign(K, ColliderLoad{});
   const double invDt = 1.0 / double(dt);
   std::vector<double> a(6 * K);
   for (const auto& [c, p] : blocks) {
     std::memcpy(a.data(), p, 6 * K * sizeof(double));
     for (size_t k = 0; k < K; ++k) {
-      loads_[k].force += Vec3d(a[k * 6], a[k * 6 + 1], a[k * 6 + 2]) * invDt;
-      loads_[k].moment += Vec3d(a[k * 6 + 3], a[k * 6 + 4], a[k * 6 + 5]) * invDt;
+      s.loads_[k].force += Vec3d(a[k * 6], a[k * 6 + 1], a[k * 6 + 2]) * invDt;
+      s.loads_[k].moment += Vec3d(a[k * 6 + 3], a[k * 6 + 4], a[k * 6 + 5]) * invDt;
     }
   }
 }
 
-} // namespace talus
-
-namespace talus {
-
-void Simulation::buildColumnsOnRanks() {
+void Simulation::RankPhases::buildColumns() {
+  Simulation& s = sim_;
   // Lines cross the whole grid: every rank gets every block with flow (from the rank that counts
   // it, whose node sums are complete) and adds them in one process's order. 4 KB per block.
-  const auto& counted = halo_.counted();
-  const int C = grid_.extraChannels;
+  const auto& counted = s.halo_.counted();
+  const int C = s.grid_.extraChannels;
   const size_t rec = sizeof(BlockCoord) + 2 * kBlockNodes * sizeof(float);
   std::vector<char> mine;
   std::vector<float> volume(kBlockNodes), mass(kBlockNodes);
-  for (uint32_t b = 0; b < grid_.blockCount(); ++b) {
+  for (uint32_t b = 0; b < s.grid_.blockCount(); ++b) {
     if (!counted[b]) continue;
-    const Vec4* nodes = grid_.block(b);
-    const float* extra = grid_.blockExtra(b);
+    const Vec4* nodes = s.grid_.block(b);
+    const float* extra = s.grid_.blockExtra(b);
     bool flow = false;
     for (int n = 0; n < kBlockNodes; ++n) {
       volume[size_t(n)] = extra[size_t(n) * size_t(C)];
@@ -172,11 +190,11 @@ void Simulation::buildColumnsOnRanks() {
       flow |= volume[size_t(n)] > 0;
     }
     if (!flow) continue;
-    appendBlockRecord(mine, grid_.topology.coord(b),
+    appendBlockRecord(mine, s.grid_.topology.coord(b),
                       {{volume.data(), kBlockNodes * sizeof(float)}, {mass.data(), kBlockNodes * sizeof(float)}});
   }
   std::vector<size_t> counts;
-  const std::vector<char> all = ranks_->comm().allGather(mine, counts);
+  const std::vector<char> all = s.ranks_->comm().allGather(mine, counts);
   const auto blocks = recordsInTreeOrder(all, rec);
   // Copied out of the byte records: the lines read them as floats (and Reals) in place.
   std::vector<float> volumes(blocks.size() * kBlockNodes);
@@ -191,59 +209,61 @@ void Simulation::buildColumnsOnRanks() {
     std::copy(mass.begin(), mass.end(), m);
     flows.push_back({c, v, 1, m, 1});
   }
-  columns_.build(flows);
+  s.columns_.build(flows);
 }
 
-ErodibleBed::ShareNodes Simulation::shareWorkingNodes() {
-  if (!ranks_) return {};
-  return [this](std::vector<ErodibleBed::WorkingNode>& nodes) {
+ErodibleBed::ShareNodes Simulation::RankPhases::shareWorkingNodes() {
+  Simulation& s = sim_;
+  return [&s](std::vector<ErodibleBed::WorkingNode>& nodes) {
     // Every rank's nodes, each from the rank counting its block, in tree order, then node order
     // (each rank's nodes of a block are in node order already, and a block is on one rank).
     using Node = ErodibleBed::WorkingNode;
     std::vector<char> mine(nodes.size() * sizeof(Node));
     if (!nodes.empty()) std::memcpy(mine.data(), nodes.data(), mine.size());
     std::vector<size_t> counts;
-    const std::vector<char> all = ranks_->comm().allGather(mine, counts);
+    const std::vector<char> all = s.ranks_->comm().allGather(mine, counts);
     nodes.resize(all.size() / sizeof(Node));
     if (!nodes.empty()) std::memcpy(static_cast<void*>(nodes.data()), all.data(), all.size());
     std::stable_sort(nodes.begin(), nodes.end(), [](const Node& a, const Node& b) { return treeOrderLess(a.block, b.block); });
   };
 }
 
-void Simulation::reduceStepFigures(G2PStats& stats, size_t& particles) {
+void Simulation::RankPhases::reduceStepFigures(G2PStats& stats, size_t& particles) {
+  Simulation& s = sim_;
   // Two collectives per step for everything the ranks must agree on after G2P: the minima (the
   // largest speed as the smallest -speed, and each group's per-rank minima, e.g. the stiffest
   // particle's time step) and the sums (non-finite particles, particles stepped). Sums of counts
   // below 2^53 are exact in doubles.
   std::vector<double> mins{-double(stats.maxSpeed)};
-  for (auto* g : groupPtrs_) {
+  for (auto* g : s.groupPtrs_) {
     const std::vector<double> v = g->rankMinima();
     mins.insert(mins.end(), v.begin(), v.end());
   }
-  ranks_->comm().minimum(mins.data(), mins.size());
+  s.ranks_->comm().minimum(mins.data(), mins.size());
   double sums[2] = {double(stats.nonFinite), double(particles)};
-  ranks_->comm().sum(sums, 2);
+  s.ranks_->comm().sum(sums, 2);
   stats.maxSpeed = Real(-mins[0]);
   stats.nonFinite = size_t(sums[0]), particles = size_t(sums[1]);
   size_t at = 1;
-  for (auto* g : groupPtrs_) {
+  for (auto* g : s.groupPtrs_) {
     const size_t n = g->rankMinima().size();
     if (n) g->setRankMinima(std::vector<double>(mins.begin() + long(at), mins.begin() + long(at + n)));
     at += n;
   }
 }
 
-void Simulation::checkFiniteOnRanks() const {
+void Simulation::RankPhases::throwNonFinite() const {
+  const Simulation& s = sim_;
   // Every rank stops; all report the message of the lowest rank holding a non-finite particle.
-  const std::string mine = nonFiniteMessage();
+  const std::string mine = s.nonFiniteMessage();
   std::vector<size_t> counts;
-  const std::vector<char> all = ranks_->comm().allGather(std::vector<char>(mine.begin(), mine.end()), counts);
+  const std::vector<char> all = s.ranks_->comm().allGather(std::vector<char>(mine.begin(), mine.end()), counts);
   size_t at = 0;
   for (size_t c : counts) {
     if (c) throw NumericalError(std::string(all.data() + at, c));
     at += c;
   }
-  throw NumericalError("non-finite particle state at step " + std::to_string(steps_));
+  throw NumericalError("non-finite particle state at step " + std::to_string(s.steps_));
 }
 
 void Simulation::gatherInto(Simulation* view, GatherScope scope) {
