@@ -43,7 +43,7 @@ void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const V
 } // namespace
 
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
-  const size_t C = size_t(grid.extraChannels), ch = size_t(grid.fbarChannel);
+  const size_t C = size_t(grid.channels.count), ch = size_t(grid.channels.fbar);
   const Real invDx = Real(1) / grid.dx;
   for (int colour = 0; colour < 8; ++colour) {
     const auto& blocks = grid.colours[size_t(colour)];
@@ -74,7 +74,7 @@ void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& 
 }
 
 void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out, const PadBox& box) {
-  const size_t C = size_t(grid.extraChannels), ch = size_t(grid.fbarChannel);
+  const size_t C = size_t(grid.channels.count), ch = size_t(grid.channels.fbar);
   forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     const float* in = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
     for (int k = 0; k < n; ++k, in += C) out[pad + k] = in[1] > 0.f ? Real(in[0] / in[1]) : Real(0);

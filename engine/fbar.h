@@ -15,7 +15,7 @@
 namespace talus {
 
 /// Scatters, for the particles of every group that averagesVolume(), m (ΔJ - 1) and m into the
-/// two extra channels from grid.fbarChannel, ΔJ = det(I + dt C) with C gathered from the updated
+/// two extra channels from grid.channels.fbar, ΔJ = det(I + dt C) with C gathered from the updated
 /// grid velocities. Colour by colour, per-block buffers: the same sums at any thread count.
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
 

@@ -27,7 +27,7 @@ uint64_t FlowColumns::lineKey(const BlockCoord& c, int axis) { return blockKey(l
 void FlowColumns::build(const SparseGrid& grid, int volumeChannel) {
   static_assert(sizeof(Vec4) == 4 * sizeof(Real), "node masses are read 4 Reals apart");
   scratch_.clear();
-  const size_t C = size_t(grid.extraChannels);
+  const size_t C = size_t(grid.channels.count);
   for (uint32_t b = 0; b < grid.blockCount(); ++b)
     scratch_.push_back({grid.topology.coord(b), grid.blockExtra(b) + volumeChannel, C, grid.block(b)->data(), 4});
   build(scratch_);

@@ -125,7 +125,7 @@ void updateGridVelocities(SparseGrid& grid, const GridUpdateParams& prm, const s
       for (size_t k = 0; k < K; ++k)
         applyCollider(*colliders[k], uint32_t(b), c, dx, step, refs[k], columns ? &lines : nullptr,
                       laws, laws.empty() ? nullptr : grid.blockExtra(uint32_t(b)),
-                      grid.extraChannels, nodes, batch, &perBlock[(b * K + k) * 6],
+                      grid.channels.count, nodes, batch, &perBlock[(b * K + k) * 6],
                       k == 0 && prm.basalWork ? prm.basalWork + b * kBlockNodes : nullptr);
     }
   });

@@ -34,7 +34,7 @@ void HaloExchange::exchange(const std::vector<MaterialGroup*>& groups, SparseGri
   Communicator& comm = dd.comm();
   const int me = comm.rank(), n = comm.size();
   const size_t nBlocks = grid.blockCount();
-  channels_ = std::max(grid.extraChannels, 0);
+  channels_ = std::max(grid.channels.count, 0);
 
   // 1. The owning blocks within one block of ours, with their ranks. Ranges say which rank owns
   // a coordinate (dd.owner), but only that rank knows whether the block holds particles: each

@@ -139,7 +139,7 @@ void binParticles(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, R
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.nodes.size(), 1 << 14), [&](const auto& r) {
     std::fill(grid.nodes.begin() + r.begin(), grid.nodes.begin() + r.end(), Vec4::Zero());
   });
-  grid.extra.assign(nBlocks * kBlockNodes * size_t(grid.extraChannels), 0.f);
+  grid.extra.assign(nBlocks * kBlockNodes * size_t(grid.channels.count), 0.f);
 }
 
 } // namespace talus

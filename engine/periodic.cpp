@@ -53,7 +53,7 @@ void Periodicity::addImages(std::vector<BlockCoord>& blocks) const {
 }
 
 void Periodicity::fold(SparseGrid& grid) const {
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   for (int a = 0; a < 3; ++a) {
     if (!axis[a]) continue;
     // Serial: a few faces of blocks, and the same order at any thread count.
@@ -77,7 +77,7 @@ void Periodicity::fold(SparseGrid& grid) const {
 
 void Periodicity::unfold(SparseGrid& grid) const {
   // The extra channels too: G2P reads AFLIP's momentum channels on ghost nodes.
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   for (int a = 2; a >= 0; --a) { // the reverse of fold, so corner ghosts get their final images
     if (!axis[a]) continue;
     forGhostBlocks(*this, grid, a, [&](uint32_t ghost, uint32_t image, int side) {

@@ -95,33 +95,34 @@ void Simulation::buildColliders() {
   structures(true);
   for (auto& c : colliders_) colliderPtrs_.push_back(c.get());
   loads_.assign(colliders_.size(), ColliderLoad{});
-  // P2G's extra channels: each particle's volume (channel 0) when a law needs the flow
+  // P2G's extra channels (ExtraChannels): each particle's volume when a law needs the flow
   // thickness, then the node mass of each material with its own basal law, then AFLIP's
-  // stress-free momentum (3 channels).
+  // stress-free momentum (3 channels), then F-bar's (2).
   for (const auto& c : colliders_) needsThickness_ |= c->law().needsThickness();
   for (const auto* g : groupPtrs_)
     if (g->basalLaw) needsThickness_ |= g->basalLaw->needsThickness();
-  int channels = needsThickness_ ? 1 : 0;
+  int channels = 0;
+  if (needsThickness_) grid_.channels.thickness = channels++;
   for (const auto* g : groupPtrs_) {
     std::vector<std::pair<int, float>> to;
-    if (needsThickness_) to.push_back({0, float(1.0 / g->density())});
+    if (needsThickness_) to.push_back({grid_.channels.thickness, float(1.0 / g->density())});
     if (g->basalLaw && !colliders_.empty()) {
       materialLaws_.push_back(MaterialLaw{channels, g->basalLaw.get()});
       to.push_back({channels++, 1.f});
     }
-    grid_.extraOf.push_back(std::move(to));
+    grid_.channels.scatterOf.push_back(std::move(to));
   }
   if (settings_.flip > 0) {
-    grid_.momentumChannel = channels;
+    grid_.channels.momentum = channels;
     channels += 3;
   }
   // F-bar's channels only when a material averages its volume change (not for water alone).
   if (settings_.fbar && std::any_of(groupPtrs_.begin(), groupPtrs_.end(), [](const MaterialGroup* g) { return g->averagesVolume(); })) {
-    grid_.fbarChannel = channels;
+    grid_.channels.fbar = channels;
     channels += 2;
   }
-  grid_.extraChannels = channels;
-  if (!channels) grid_.extraOf.clear();
+  grid_.channels.count = channels;
+  if (!channels) grid_.channels.scatterOf.clear();
 }
 
 double Simulation::maxWaveSpeed() const {
@@ -166,7 +167,7 @@ double Simulation::step(double dtCap) {
     ScopedTimer t(times_.halo);
     phases_->reduceLoads(rdt);
   }
-  if (grid_.fbarChannel >= 0) {
+  if (grid_.channels.fbar >= 0) {
     ScopedTimer t(times_.g2p);
     averageVolumeChange(groupPtrs_, grid_, rdt);
   }

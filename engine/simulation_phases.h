@@ -41,7 +41,7 @@ public:
   void bin() override;
   const HaloExchange* exchangeHalo(Real) override { return nullptr; }
   const std::vector<uint8_t>* counted() const override { return nullptr; }
-  void buildColumns() override { sim_.columns_.build(sim_.grid_, 0); }
+  void buildColumns() override { sim_.columns_.build(sim_.grid_, sim_.grid_.channels.thickness); }
   ErodibleBed::ShareNodes shareWorkingNodes() override { return {}; }
   void reduceLoads(Real) override {}
   void reduceStepFigures(G2PStats&, size_t&) override {}

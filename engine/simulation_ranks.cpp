@@ -175,7 +175,7 @@ void Simulation::RankPhases::buildColumns() {
   // Lines cross the whole grid: every rank gets every block with flow (from the rank that counts
   // it, whose node sums are complete) and adds them in one process's order. 4 KB per block.
   const auto& counted = s.halo_.counted();
-  const int C = s.grid_.extraChannels;
+  const size_t C = size_t(s.grid_.channels.count), T = size_t(s.grid_.channels.thickness);
   const size_t rec = sizeof(BlockCoord) + 2 * kBlockNodes * sizeof(float);
   std::vector<char> mine;
   std::vector<float> volume(kBlockNodes), mass(kBlockNodes);
@@ -185,7 +185,7 @@ void Simulation::RankPhases::buildColumns() {
     const float* extra = s.grid_.blockExtra(b);
     bool flow = false;
     for (int n = 0; n < kBlockNodes; ++n) {
-      volume[size_t(n)] = extra[size_t(n) * size_t(C)];
+      volume[size_t(n)] = extra[size_t(n) * C + T];
       mass[size_t(n)] = float(nodes[n][0]);
       flow |= volume[size_t(n)] > 0;
     }

@@ -14,7 +14,7 @@ namespace {
 
 /// (0, velocity before forces) of the padded neighbourhood's nodes from P2G's momentum channels.
 void copyOldVelocities(const SparseGrid& grid, const std::array<int32_t, 8>& up, const PadBox& box, Vec4* out) {
-  const int C = grid.extraChannels, m = grid.momentumChannel;
+  const int C = grid.channels.count, m = grid.channels.momentum;
   forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     const Vec4* nodes = grid.block(uint32_t(up[d])) + node;
     const float* q = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C) + size_t(m);
@@ -65,10 +65,10 @@ void copyPaddedNodes(const SparseGrid& grid, const std::array<int32_t, 8>& up, V
 
 G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, Real dt, Real flip) {
   tbb::combinable<G2PStats> stats;
-  const bool aflip = flip > Real(0) && grid.momentumChannel >= 0;
+  const bool aflip = flip > Real(0) && grid.channels.momentum >= 0;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.owning.size(), 1), [&](const auto& r) {
     std::vector<Vec4> buf(kPadNodes), old(aflip ? kPadNodes : 0);
-    std::vector<Real> meanChange(grid.fbarChannel >= 0 ? kPadNodes : 0);
+    std::vector<Real> meanChange(grid.channels.fbar >= 0 ? kPadNodes : 0);
     G2PStats& st = stats.local();
     for (size_t o = r.begin(); o != r.end(); ++o) {
       const uint32_t b = grid.owning[o];
@@ -85,7 +85,7 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
         blk.old = old.data();
         blk.flip = flip;
       }
-      if (grid.fbarChannel >= 0) {
+      if (grid.channels.fbar >= 0) {
         copyMeanVolumeChange(grid, up, meanChange.data(), box);
         blk.meanVolumeChange = meanChange.data();
       }

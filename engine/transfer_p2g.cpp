@@ -161,7 +161,7 @@ PadBox reachedNodes(const std::vector<MaterialGroup*>& groups, const SparseGrid&
 
 void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& grid, uint32_t b, Real dt,
                   Vec4* buf, float* extra, const PadBox& box) {
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   forEachPaddedRow(box, [&](int, int pad, int, int n) {
     std::fill(buf + pad, buf + pad + n, Vec4::Zero());
     if (C > 0) std::fill(extra + size_t(pad) * size_t(C), extra + size_t(pad + n) * size_t(C), 0.f);
@@ -173,9 +173,9 @@ void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& g
     const size_t begin = g.blockStart[b], end = g.blockStart[b + 1];
     if (begin == end) continue;
     const Real volumePerMass = Real(1.0 / g.density());
-    const MomentumOut mom{extra, grid.momentumChannel, C};
-    const bool momentum = grid.momentumChannel >= 0, mass = C > 0 && !grid.extraOf[gi].empty();
-    const MassOut mo{extra, C, mass ? grid.extraOf[gi].data() : nullptr, mass ? grid.extraOf[gi].size() : 0};
+    const MomentumOut mom{extra, grid.channels.momentum, C};
+    const bool momentum = grid.channels.momentum >= 0, mass = C > 0 && !grid.channels.scatterOf[gi].empty();
+    const MassOut mo{extra, C, mass ? grid.channels.scatterOf[gi].data() : nullptr, mass ? grid.channels.scatterOf[gi].size() : 0};
     const ParticleSet& P = g.particles;
     if (momentum && mass) scatterRange<true, true>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
     else if (momentum) scatterRange<true, false>(P, begin, end, volumePerMass, dt, grid.dx, origin, buf, mom, mo);
@@ -187,7 +187,7 @@ void scatterBlock(const std::vector<MaterialGroup*>& groups, const SparseGrid& g
 namespace {
 
 void flushExtra(const float* extra, SparseGrid& grid, uint32_t b, const PadBox& box) {
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   const auto& up = grid.topology.upper(b);
   forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * size_t(C);
@@ -198,7 +198,7 @@ void flushExtra(const float* extra, SparseGrid& grid, uint32_t b, const PadBox& 
 
 /// Adds rows another rank scattered (part d of its block's padded buffer) into block `target`.
 void flushRemote(const RemoteRows& rows, SparseGrid& grid) {
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   const char* nodes = rows.nodes;
   const char* extra = rows.extra;
   Vec4* block = grid.block(uint32_t(rows.target));
@@ -221,7 +221,7 @@ void flushRemote(const RemoteRows& rows, SparseGrid& grid) {
 } // namespace
 
 void particlesToGrid(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt, const HaloExchange* halo) {
-  const int C = grid.extraChannels;
+  const int C = grid.channels.count;
   for (int colour = 0; colour < 8; ++colour) {
     const auto& local = grid.colours[size_t(colour)];
     static const std::vector<RemoteRows> kNone;

@@ -281,8 +281,8 @@ TEST(Kernels, GridUpdateMixesMaterialLawsByTheirMassAtANode) {
   SparseGrid grid;
   ReorderScratch scratch;
   grid.dx = Real(kDx);
-  grid.extraChannels = 1;
-  grid.extraOf = {{}, {{0, 1.f}}}; // channel 0: the sticky material's node mass
+  grid.channels.count = 1;
+  grid.channels.scatterOf = {{}, {{0, 1.f}}}; // channel 0: the sticky material's node mass
   std::vector<MaterialGroup*> groups{a.get(), b.get()};
   binParticles(groups, grid, scratch);
   particlesToGrid(groups, grid, Real(1e-3));
