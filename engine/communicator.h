@@ -23,6 +23,13 @@ public:
   /// Collective: element-wise minima of n doubles over all ranks (exact), into v on every rank.
   /// A step merges what it needs into one call of each kind (a maximum as the minimum of -x).
   virtual void minimum(double* v, size_t n) = 0;
+  /// Collective: minimum() of mins[0, nMin) and sum() of sums[0, nSum) in one call, so a step's
+  /// figures (its largest speed, the groups' minima, the counts and the ranks' loads) take one
+  /// latency. MPI overrides it with one reduction; this default makes the two calls.
+  virtual void minimumAndSum(double* mins, size_t nMin, double* sums, size_t nSum) {
+    minimum(mins, nMin);
+    sum(sums, nSum);
+  }
   /// Collective: every rank's bytes, concatenated in rank order; `counts` gets each rank's size.
   virtual std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
   /// Collective: every rank's bytes, concatenated in rank order, on rank 0 only (empty elsewhere).

@@ -82,6 +82,8 @@ public:
   /// Collective: (max / target - 1) of the ranks' particle counts; the target is the mean, or
   /// the rank's share of the total.
   double imbalance(size_t localParticles) const;
+  /// The same from every rank's count (counts[r]: rank r's), without a collective.
+  double imbalanceOf(const std::vector<double>& counts) const;
   double threshold() const { return threshold_; }
   /// Called once per step: whether an imbalance calls for new ranges. Above the threshold by
   /// more than what the last ranges left, or above it at all kRetrySteps steps after them (blocks
@@ -97,7 +99,6 @@ private:
   double threshold_;
   double settled_ = 0; ///< the imbalance the last balance() left
   int sinceBalance_ = 0; ///< steps since then
-  double imbalanceOf(const std::vector<double>& counts) const;
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
   std::vector<double> shares_;    ///< empty: equal
   std::vector<ParticleOrder> order_;

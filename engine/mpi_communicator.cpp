@@ -41,6 +41,21 @@ int checkedCount(size_t n) {
   return int(n);
 }
 
+/// MPI_User_function for minimumAndSum: inout = in (op) inout over `len` elements of a contiguous
+/// type of doubles laid out as [nMin, minima..., sums...].
+void minThenSum(void* in, void* inout, int* len, MPI_Datatype* type) {
+  int size = 0;
+  MPI_Type_size(*type, &size);
+  const size_t n = size_t(size) / sizeof(double);
+  const double* a = static_cast<const double*>(in);
+  double* b = static_cast<double*>(inout);
+  for (int e = 0; e < *len; ++e, a += n, b += n) {
+    const size_t nMin = size_t(a[0]);
+    for (size_t i = 1; i < 1 + nMin; ++i) b[i] = std::min(a[i], b[i]);
+    for (size_t i = 1 + nMin; i < n; ++i) b[i] += a[i];
+  }
+}
+
 class MpiCommunicator final : public Communicator {
 public:
   MpiCommunicator() {
@@ -64,6 +79,26 @@ public:
   void sum(double* v, size_t n) override {
     Stopwatch t(seconds, collectives);
     MPI_Allreduce(MPI_IN_PLACE, v, checkedCount(n), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  }
+  void minimumAndSum(double* mins, size_t nMin, double* sums, size_t nSum) override {
+    // One reduction of [nMin, mins..., sums...] as one element of a contiguous type, with an op
+    // that takes the minimum of the first part and the sum of the rest (the split travels in
+    // the buffer, the same on every rank).
+    Stopwatch t(seconds, collectives);
+    std::vector<double> buf(1 + nMin + nSum);
+    buf[0] = double(nMin);
+    std::copy(mins, mins + nMin, buf.begin() + 1);
+    std::copy(sums, sums + nSum, buf.begin() + 1 + long(nMin));
+    MPI_Datatype type;
+    MPI_Type_contiguous(checkedCount(buf.size()), MPI_DOUBLE, &type);
+    MPI_Type_commit(&type);
+    MPI_Op op;
+    MPI_Op_create(&minThenSum, 1, &op);
+    MPI_Allreduce(MPI_IN_PLACE, buf.data(), 1, type, op, MPI_COMM_WORLD);
+    MPI_Op_free(&op);
+    MPI_Type_free(&type);
+    std::copy(buf.begin() + 1, buf.begin() + 1 + long(nMin), mins);
+    std::copy(buf.begin() + 1 + long(nMin), buf.end(), sums);
   }
   std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
     Stopwatch t(seconds, collectives);

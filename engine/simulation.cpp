@@ -147,8 +147,9 @@ double Simulation::stableDt() const {
   return std::min(std::min(dt, limit), settings_.maxDt);
 }
 
-double Simulation::step(double dtCap) {
-  const double dt = std::min(stableDt(), dtCap);
+double Simulation::step(double dtCap) { return stepBy(std::min(stableDt(), dtCap)); }
+
+double Simulation::stepBy(double dt) {
   const Real rdt = Real(dt);
   phases_->bin();
   fresh_.clear(); // binned among the others
@@ -225,7 +226,8 @@ void Simulation::updateGrid(double dt, const std::vector<uint8_t>* counted) {
 double Simulation::stepToward(double t) {
   const double remaining = t - time_;
   const double dt = stableDt();
-  const double taken = step(remaining <= dt ? remaining : (remaining < 2 * dt ? 0.5 * remaining : dt));
+  // At most dt each way, so the stable step (a collective on ranks) is not asked for twice.
+  const double taken = stepBy(remaining <= dt ? remaining : (remaining < 2 * dt ? 0.5 * remaining : dt));
   if (remaining <= dt) time_ = t; // exact arrival despite rounding
   return taken;
 }

@@ -213,6 +213,7 @@ private:
   class LocalPhases;
   class RankPhases;
 
+  double stepBy(double dt); ///< the step itself, by dt (at most the stable step)
   void buildColliders();
   void prepareColliders(double dt);
   void updateGrid(double dt, const std::vector<uint8_t>* counted);

@@ -70,6 +70,7 @@ public:
 
 private:
   Simulation& sim_;
+  double imbalance_ = 0; ///< of the particle counts after the last step's G2P (0 before the first)
 };
 
 } // namespace talus

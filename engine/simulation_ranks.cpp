@@ -126,7 +126,8 @@ void Simulation::RankPhases::bin() {
   binParticles(s.groupPtrs_, s.grid_, s.reorder_, &s.periodic_, &s.ranks_->order());
   s.times_.bin += secondsSince(t0);
   t0 = std::chrono::steady_clock::now();
-  if (s.ranks_->wantsRebalance(s.ranks_->imbalance(s.particleCount()))) {
+  // The imbalance of the last step's counts (reduceStepFigures), so it costs no collective here.
+  if (s.ranks_->wantsRebalance(imbalance_)) {
     // New ranges from every rank's blocks; the order of the particles across ranks is unchanged.
     s.ranks_->balance(allBlockCounts(s.ranks_->comm(), blockCounts(s.grid_, s.groupPtrs_)));
     s.ranks_->migrate(s.groupPtrs_, s.grid_.dx);
@@ -230,18 +231,22 @@ ErodibleBed::ShareNodes Simulation::RankPhases::shareWorkingNodes() {
 
 void Simulation::RankPhases::reduceStepFigures(G2PStats& stats, size_t& particles) {
   Simulation& s = sim_;
-  // Two collectives per step for everything the ranks must agree on after G2P: the minima (the
+  // One collective per step for everything the ranks must agree on after G2P: the minima (the
   // largest speed as the smallest -speed, and each group's per-rank minima, e.g. the stiffest
-  // particle's time step) and the sums (non-finite particles, particles stepped). Sums of counts
-  // below 2^53 are exact in doubles.
+  // particle's time step) and the sums (non-finite particles, particles stepped, and every rank's
+  // count in its own slot, for the next binning's load balance). Sums of counts below 2^53 are
+  // exact in doubles, whatever the order.
   std::vector<double> mins{-double(stats.maxSpeed)};
   for (auto* g : s.groupPtrs_) {
     const std::vector<double> v = g->rankMinima();
     mins.insert(mins.end(), v.begin(), v.end());
   }
-  s.ranks_->comm().minimum(mins.data(), mins.size());
-  double sums[2] = {double(stats.nonFinite), double(particles)};
-  s.ranks_->comm().sum(sums, 2);
+  Communicator& comm = s.ranks_->comm();
+  std::vector<double> sums(2 + size_t(comm.size()), 0.0);
+  sums[0] = double(stats.nonFinite), sums[1] = double(particles);
+  sums[2 + size_t(comm.rank())] = double(particles);
+  comm.minimumAndSum(mins.data(), mins.size(), sums.data(), sums.size());
+  imbalance_ = s.ranks_->imbalanceOf(std::vector<double>(sums.begin() + 2, sums.end()));
   stats.maxSpeed = Real(-mins[0]);
   stats.nonFinite = size_t(sums[0]), particles = size_t(sums[1]);
   size_t at = 1;
