@@ -241,6 +241,24 @@ TEST(Ranks, AGatherLargerThanOneMessageArrivesWholeInRankOrder) {
   EXPECT_EQ(at, all.size());
 }
 
+TEST(Ranks, OneReductionTakesTheMinimaOfOnePartAndTheSumsOfTheOther) {
+  // Communicator::minimumAndSum, the step's one reduction after G2P: rank r gives minima
+  // (r + 0.5, -r, 7) and sums (1, r, 1e15 + r: exact below 2^53 in any order); any mixing of the
+  // parts or a lost rank shows.
+  const int n = world->size(), r = world->rank();
+  const uint64_t calls = world->collectives;
+  double mins[3] = {r + 0.5, -double(r), 7.0};
+  double sums[3] = {1.0, double(r), 1e15 + r};
+  world->minimumAndSum(mins, 3, sums, 3);
+  EXPECT_EQ(world->collectives, calls + 1) << "one collective";
+  EXPECT_EQ(mins[0], 0.5);
+  EXPECT_EQ(mins[1], -double(n - 1));
+  EXPECT_EQ(mins[2], 7.0);
+  EXPECT_EQ(sums[0], double(n));
+  EXPECT_EQ(sums[1], double(n * (n - 1) / 2));
+  EXPECT_EQ(sums[2], double(n) * 1e15 + double(n * (n - 1) / 2));
+}
+
 TEST(Ranks, AnElasticBlockSlidingThroughThreeRanksRangesIsBitIdentical) {
   // No rebalancing: the ranges stay where the block started, so it slides out of rank 0's
   // range through the others' (4 ranks: three boundaries crossed).
