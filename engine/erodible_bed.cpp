@@ -78,12 +78,13 @@ void ErodibleBed::erode(SparseGrid& grid, double dt, const std::vector<uint8_t>*
   };
   std::vector<WorkingNode>& nodes = working_;
   nodes.clear();
-  forEachWorkingNode([&](uint32_t b, int n, const std::pair<uint32_t, uint32_t>&) {
-    if (!counted || (*counted)[b]) nodes.push_back({grid.topology.coord(b), n, work_[size_t(b) * kBlockNodes + size_t(n)], grid.block(b)[n]});
+  forEachWorkingNode([&](uint32_t b, int n, const std::pair<uint32_t, uint32_t>& col) {
+    if (!counted || (*counted)[b])
+      nodes.push_back({grid.topology.coord(b), n, work_[size_t(b) * kBlockNodes + size_t(n)], col.first, col.second, grid.block(b)[n]});
   });
   if (share) share(nodes);
   std::fill(columnWork_.begin(), columnWork_.end(), 0.0);
-  for (const WorkingNode& wn : nodes) columnWork_[columnOf(wn.block, wn.node)->first] += double(wn.work);
+  for (const WorkingNode& wn : nodes) columnWork_[wn.first] += double(wn.work);
   // Each column's work erodes its covers top first: e_b dm of it per kilogram taken. What a cover
   // takes is stored as its share per joule of the column's work, so the nodes' shares sum to it.
   std::vector<double>& perJoule = scratch_;
@@ -107,11 +108,10 @@ void ErodibleBed::erode(SparseGrid& grid, double dt, const std::vector<uint8_t>*
     return Vec3((node.tail<3>().cast<double>() * (m / (m + dm))).cast<Real>());
   };
   for (const WorkingNode& wn : nodes) { // the pools, in one process's node order
-    const auto& col = *columnOf(wn.block, wn.node);
-    const double w = double(wn.work), dmNode = nodeShare(col, w);
+    const double w = double(wn.work), dmNode = nodeShare({wn.first, wn.end}, w);
     if (!(dmNode > 0)) continue;
     const Vec3d v = slowed(wn.value, dmNode).cast<double>(), x = nodePosition(wn.block, wn.node, dx_);
-    for (uint32_t e = col.first; e < col.second; ++e) {
+    for (uint32_t e = wn.first; e < wn.end; ++e) {
       const double dm = perJoule[e] * w;
       if (!(dm > 0)) continue;
       Entry& en = entries_[e];

@@ -63,6 +63,7 @@ public:
     BlockCoord block;
     int32_t node = 0; ///< index in the block
     float work = 0;   ///< J
+    uint32_t first = 0, end = 0; ///< its column's covers, [first, end) (the same on every rank)
     Vec4 value;       ///< mass, velocity
   };
   /// The ranks' seam: handed this rank's working nodes (of the blocks it counts), leaves every
