@@ -24,7 +24,7 @@ public:
   /// A step merges what it needs into one call of each kind (a maximum as the minimum of -x).
   virtual void minimum(double* v, size_t n) = 0;
   /// Collective: minimum() of mins[0, nMin) and sum() of sums[0, nSum) in one call, so a step's
-  /// figures (its largest speed, the groups' minima, the counts and the ranks' loads) take one
+  /// figures (its largest speed, the groups' minima, the counts and every rank's count) take one
   /// latency. MPI overrides it with one reduction; this default makes the two calls.
   virtual void minimumAndSum(double* mins, size_t nMin, double* sums, size_t nSum) {
     minimum(mins, nMin);
