@@ -60,8 +60,8 @@ sanitized_checks() {
   # The long physics validations repeat kernels the other tests already run under the
   # sanitizers; skipping them keeps CI inside its budget (the loads on colliders, calibration,
   # detrainment and the two slowest hard cases were 10 of the sanitized suite's 28 test-minutes:
-  # their kernels run under the sanitizers in the shorter tests of the same classes). Two write-fault tests check the system's
-  # cause in the message (ENOSPC, EFBIG): in the clang/ASan build HDF5's error stack does not carry
+  # their kernels run under the sanitizers in the shorter tests of the same classes).
+  # Two write-fault tests check the system's cause in the message (ENOSPC, EFBIG): in the clang/ASan build HDF5's error stack does not carry
   # it ("HDF5 call failed"), so they run in the Release suite only (not yet understood).
   ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$san" --output-on-failure -j "$jobs" --timeout 1200 \
