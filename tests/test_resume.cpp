@@ -52,6 +52,14 @@ maps = { cell_size = 0.2 }
 [[output.sections]]
 name = "gate"
 points = [[1.5, 0.0], [1.5, 1.0]]
+# A probe riding the rock (its place is state a checkpoint must keep) and a wave gauge.
+[[output.probes]]
+name = "rock"
+point = [2.2, 0.5, 1.0]
+materials = ["rock"]
+[[output.gauges]]
+name = "pool"
+point = [0.5, 0.5]
 )";
 
 std::string slurp(const std::string& path) {

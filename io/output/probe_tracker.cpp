@@ -94,6 +94,21 @@ void ProbeTracker::onStep(const Simulation& sim, double dt) {
   local_ += dt * v;
 }
 
+void ProbeTracker::save(StateArchive& a, const std::string& prefix) const {
+  a.putVector(prefix + "local", std::vector<double>{local_.x(), local_.y(), local_.z()});
+  a.putVector(prefix + "velocity", std::vector<double>{velocity_.x(), velocity_.y(), velocity_.z()});
+  a.putValue(prefix + "lost", int32_t(lost_));
+}
+
+void ProbeTracker::load(const StateArchive& a, const std::string& prefix) {
+  std::vector<double> x, v;
+  a.getVector(prefix + "local", x);
+  a.getVector(prefix + "velocity", v);
+  if (x.size() != 3 || v.size() != 3) throw std::runtime_error("checkpoint: probe '" + spec_.name + "' has no position");
+  local_ = Vec3d(x[0], x[1], x[2]), velocity_ = Vec3d(v[0], v[1], v[2]);
+  lost_ = a.getValue<int32_t>(prefix + "lost") != 0;
+}
+
 void ProbeTracker::sample(const Simulation&, double, std::vector<double>& row) {
   const Vec3d w = position();
   row.push_back(lost_ ? std::numeric_limits<double>::quiet_NaN() : velocity_.norm());

@@ -23,6 +23,10 @@ public:
   std::vector<std::string> header() const override;
   void onStep(const Simulation& sim, double dt) override;
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+  /// The probe's place and last velocity: a resumed run's outputs start from the scene's initial
+  /// state (onStart), where the probe is back at its start point.
+  void save(StateArchive& a, const std::string& prefix) const override;
+  void load(const StateArchive& a, const std::string& prefix) override;
 
   /// World position of the probe and the mean velocity found there at the last update.
   Vec3d position() const { return local_ + origin_; }
