@@ -155,3 +155,98 @@ TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {
   ASSERT_EQ(test::runTalus("run " + scene + " --set simulation.end_time=0.3 --quiet --threads 1 --resume " + run, resumed), 0)
       << resumed;
 }
+
+namespace {
+
+// A water dam break in a flume with two wave gauges and a section, and an elastic slab sliding
+// down a tilted plane under samosAT (the thickness lines cross the ranks), with a probe and a
+// path: each about a second at one process.
+const std::string kOutputs = R"(
+[output]
+frame_interval = 0.2
+checkpoint_interval = 0.1
+series_interval = 0.01
+)";
+const std::string kWaterFlume = R"(
+[simulation]
+dx = 0.04
+end_time = 0.6
+[domain]
+min = [0, 0, 0]
+max = [2.4, 0.16, 0.6]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 20
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.6, 0.16, 0.4]
+)" + kOutputs + R"(
+[[output.gauges]]
+name = "near"
+point = [1.0, 0.08]
+[[output.gauges]]
+name = "far"
+point = [2.0, 0.08]
+[[output.sections]]
+name = "middle"
+points = [[1.2, 0], [1.2, 0.16]]
+)";
+const std::string kSamosAtSlab = R"(
+[simulation]
+dx = 0.05
+end_time = 0.6
+gravity = [4.905, 0, -8.4957]
+[domain]
+min = [0, 0, 0]
+max = [3.2, 0.8, 0.8]
+walls = "slip"
+[terrain]
+plane = { point = [0, 0, 0.1], normal = [0, 0, 1] }
+boundary = "samosat"
+[[materials]]
+name = "snow"
+model = "elastic"
+density = 300
+youngs_modulus = 1e6
+poisson_ratio = 0.3
+[[bodies]]
+material = "snow"
+shape = "box"
+min = [0.2, 0.1, 0.1]
+max = [1.4, 0.7, 0.35]
+)" + kOutputs + R"(
+[[output.probes]]
+name = "slab"
+point = [1.0, 0.4, 0.2]
+[[output.paths]]
+name = "down"
+points = [[0.2, 0.4], [3.0, 0.4]]
+)";
+
+} // namespace
+
+TEST(RunOnRanks, WaterAndThicknessLawRunsAtTwoAndFourRanksWriteOneProcesssFilesAndResumeAtOne) {
+  // The issue-35 cases beside the default scene's: every file (series with gauges, sections,
+  // probes and paths; frames; particles) one process's at 2 and 4 ranks, and the 4 ranks' last
+  // checkpoint (t = 0.5 s) resumed at one process ends where one process did.
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"water", kWaterFlume}, {"samosat", kSamosAtSlab}}) {
+    SCOPED_TRACE(name);
+    const std::string dir = test::tempDir("ranks_" + name), scene = dir + "/" + name + ".toml";
+    std::ofstream(scene) << text;
+    std::string out;
+    const std::string args = " run " + scene + " --quiet --threads 1 --out " + dir;
+    ASSERT_EQ(test::runTalus(args.substr(1) + "/one", out), 0) << out;
+    for (int n : {2, 4}) {
+      ASSERT_EQ(test::shell(mpirun(n) + TALUS_BINARY + args + "/" + std::to_string(n), out), 0) << out;
+      expectSameFiles(dir + "/one", dir + "/" + std::to_string(n));
+    }
+    ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --resume " + dir + "/4", out), 0) << out;
+    expectSameFiles(dir + "/one", dir + "/4");
+  }
+}
