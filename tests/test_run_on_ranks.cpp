@@ -65,16 +65,19 @@ std::string sceneFile(const std::string& dir) {
 
 } // namespace
 
-TEST(RunOnRanks, TheDefaultScenesFilesAtTwoRanksAreOneProcesss) {
+TEST(RunOnRanks, TheDefaultScenesFilesAtTwoAndFourRanksAreOneProcesss) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
   const std::string dir = test::tempDir("ranks_default");
   std::string out;
   ASSERT_EQ(test::runTalus("run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/one", out), 0) << out;
-  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run --quiet --set simulation.end_time=1.5 --threads 1 --out " + dir + "/two", out), 0) << out;
-  expectSameFiles(dir + "/one", dir + "/two");
-  const std::string summary = bytes(dir + "/two/summary.json");
-  EXPECT_NE(summary.find("\"ranks\": 2"), std::string::npos);
-  EXPECT_NE(summary.find("\"communication_seconds\""), std::string::npos);
+  for (int n : {2, 4}) {
+    const std::string to = dir + "/" + std::to_string(n);
+    ASSERT_EQ(test::shell(mpirun(n) + TALUS_BINARY " run --quiet --set simulation.end_time=1.5 --threads 1 --out " + to, out), 0) << out;
+    expectSameFiles(dir + "/one", to);
+    const std::string summary = bytes(to + "/summary.json");
+    EXPECT_NE(summary.find("\"ranks\": " + std::to_string(n)), std::string::npos);
+    EXPECT_NE(summary.find("\"communication_seconds\""), std::string::npos);
+  }
 }
 
 TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
