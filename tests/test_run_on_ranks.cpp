@@ -1,5 +1,6 @@
 // `mpirun -np N talus run`: the files are one process's, a run checkpointed at N ranks resumes
 // at M, and a killed rank ends the job with the last checkpoint intact. Skipped without mpirun.
+#include "samosat_slab.h"
 #include "small_collapse.h"
 #include "process_support.h"
 #include "terrain_test_support.h"
@@ -199,30 +200,7 @@ point = [2.0, 0.08]
 name = "middle"
 points = [[1.2, 0], [1.2, 0.16]]
 )";
-const std::string kSamosAtSlab = R"(
-[simulation]
-dx = 0.05
-end_time = 0.6
-gravity = [4.905, 0, -8.4957]
-[domain]
-min = [0, 0, 0]
-max = [3.2, 0.8, 0.8]
-walls = "slip"
-[terrain]
-plane = { point = [0, 0, 0.1], normal = [0, 0, 1] }
-boundary = "samosat"
-[[materials]]
-name = "snow"
-model = "elastic"
-density = 300
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-[[bodies]]
-material = "snow"
-shape = "box"
-min = [0.2, 0.1, 0.1]
-max = [1.4, 0.7, 0.35]
-)" + kOutputs + R"(
+const std::string kSamosAtRun = with(test::kSamosAtSlab, "end_time = 1", "end_time = 0.6") + kOutputs + R"(
 [[output.probes]]
 name = "slab"
 point = [1.0, 0.4, 0.2]
@@ -238,7 +216,7 @@ TEST(RunOnRanks, WaterAndThicknessLawRunsAtTwoAndFourRanksWriteOneProcesssFilesA
   // probes and paths; frames; particles) one process's at 2 and 4 ranks, and the 4 ranks' last
   // checkpoint (t = 0.5 s) resumed at one process ends where one process did.
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"water", kWaterFlume}, {"samosat", kSamosAtSlab}}) {
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"water", kWaterFlume}, {"samosat", kSamosAtRun}}) {
     SCOPED_TRACE(name);
     const std::string dir = test::tempDir("ranks_" + name), scene = dir + "/" + name + ".toml";
     std::ofstream(scene) << text;

@@ -6,6 +6,7 @@
 #include "engine/mpi_communicator.h"
 #include "engine/simulation.h"
 #include "io/scene/scene.h"
+#include "samosat_slab.h"
 #include "small_collapse.h"
 
 #include <cstring>
@@ -115,34 +116,6 @@ velocity = [6, 0, 0]
 )";
 
 const std::string kCollapse = test::kSmallCollapse;
-
-// A slab sliding down a 30-degree incline under samosAT, whose drag needs the flow thickness:
-// line sums across the whole grid, gathered from every rank.
-const char* kSamosAtSlab = R"(
-[simulation]
-dx = 0.05
-particles_per_cell = 8
-end_time = 1
-gravity = [4.905, 0, -8.4957]
-[domain]
-min = [0, 0, 0]
-max = [3.2, 0.8, 0.8]
-walls = "slip"
-[terrain]
-plane = { point = [0, 0, 0.1], normal = [0, 0, 1] }
-boundary = "samosat"
-[[materials]]
-name = "snow"
-model = "elastic"
-density = 300
-youngs_modulus = 1e6
-poisson_ratio = 0.3
-[[bodies]]
-material = "snow"
-shape = "box"
-min = [0.2, 0.1, 0.1]
-max = [1.4, 0.7, 0.35]
-)";
 
 // Water at rest in two stacked bodies (hydrostatic start: each column's top is seen over both)
 // beside a granular heap: two groups, two bodies in one of them.
@@ -310,8 +283,8 @@ TEST(Ranks, UnequalSharesMoveTheRangesNotTheResults) {
 }
 
 TEST(Ranks, AThicknessLawsSlabIsBitIdentical) {
-  RankRun r = runDistributed(kSamosAtSlab, {}, 150);
-  expectInvariant(r, kSamosAtSlab, {}, 150);
+  RankRun r = runDistributed(test::kSamosAtSlab, {}, 150);
+  expectInvariant(r, test::kSamosAtSlab, {}, 150);
 }
 
 TEST(Ranks, TheDefaultTerrainSceneIsBitIdentical) {
