@@ -2,12 +2,11 @@
 
 #include "engine/types.h"
 #include "engine/simulation.h"
-#include "io/common/chart_drawing.h"
 #include "io/scene/scene.h"
 #include "tools/benchmark.h"
 #include "tools/validation_cases.h"
+#include "tools/work_precision_plot.h"
 
-#include <cairo.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,13 +27,8 @@ namespace talus {
 namespace {
 
 using namespace validation;
+using work_precision::Point;
 
-struct Point {
-  double cells = 0, error = 0, wall = 0;
-  size_t particles = 0;
-  unsigned long long steps = 0;
-  std::string detail; ///< case-specific figures behind the error, printed with it
-};
 
 struct Case {
   std::string name, what, errorMeaning, cellsMeaning;
@@ -167,70 +161,6 @@ std::vector<Case> cases(const std::string& shared) {
   return c;
 }
 
-/// Log-log chart: one polyline per case through its (wall, error) points.
-void plotWorkPrecision(const std::string& path, const std::vector<std::string>& names,
-                       const std::vector<std::vector<Point>>& series) {
-  const int W = 900, H = 600, L = 90, R = 230, T = 50, B = 70;
-  double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
-  for (const auto& s : series)
-    for (const auto& p : s) {
-      if (!(p.wall > 0) || !(p.error > 0)) continue;
-      x0 = std::min(x0, p.wall), x1 = std::max(x1, p.wall), y0 = std::min(y0, p.error), y1 = std::max(y1, p.error);
-    }
-  if (!(x1 > 0)) return;
-  x0 = std::pow(10, std::floor(std::log10(x0))), x1 = std::pow(10, std::ceil(std::log10(x1)));
-  y0 = std::pow(10, std::floor(std::log10(y0))), y1 = std::pow(10, std::ceil(std::log10(y1)));
-  auto X = [&](double v) { return L + (W - L - R) * (std::log10(v) - std::log10(x0)) / (std::log10(x1) - std::log10(x0)); };
-  auto Y = [&](double v) { return H - B - (H - T - B) * (std::log10(v) - std::log10(y0)) / (std::log10(y1) - std::log10(y0)); };
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surf(
-      cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H), cairo_surface_destroy);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surf.get()), cairo_destroy);
-  cairo_set_source_rgb(cr.get(), 1, 1, 1);
-  cairo_paint(cr.get());
-  cairo_set_line_width(cr.get(), 1);
-  for (double d = x0; d <= x1 * 1.0001; d *= 10) { // decades
-    cairo_set_source_rgb(cr.get(), 0.85, 0.85, 0.85);
-    cairo_move_to(cr.get(), X(d), T), cairo_line_to(cr.get(), X(d), H - B), cairo_stroke(cr.get());
-    cairo_set_source_rgb(cr.get(), 0, 0, 0);
-    chart::text(cr.get(), X(d), H - B + 18, fmt("%g", d), 12, chart::Align::Centre);
-  }
-  for (double d = y0; d <= y1 * 1.0001; d *= 10) {
-    cairo_set_source_rgb(cr.get(), 0.85, 0.85, 0.85);
-    cairo_move_to(cr.get(), L, Y(d)), cairo_line_to(cr.get(), W - R, Y(d)), cairo_stroke(cr.get());
-    cairo_set_source_rgb(cr.get(), 0, 0, 0);
-    chart::text(cr.get(), L - 6, Y(d), fmt("%g", d), 12, chart::Align::End, chart::Align::Centre);
-  }
-  cairo_set_source_rgb(cr.get(), 0, 0, 0);
-  cairo_rectangle(cr.get(), L, T, W - L - R, H - T - B), cairo_stroke(cr.get());
-  chart::text(cr.get(), (L + W - R) / 2.0, H - 25, "wall time (s, 2 threads)", 14, chart::Align::Centre);
-  chart::textRotated(cr.get(), 25, (T + H - B) / 2.0, "relative error", 14);
-  chart::text(cr.get(), L, 30, "Talus: error against cost, each case refined at fixed particles per cell and CFL", 15,
-              chart::Align::Start, chart::Align::End, true);
-  for (size_t i = 0; i < series.size(); ++i) {
-    const chart::Rgb c = chart::lineColour(int(i));
-    cairo_set_source_rgb(cr.get(), c.r, c.g, c.b);
-    cairo_set_line_width(cr.get(), 2);
-    bool first = true;
-    for (const auto& p : series[i]) {
-      if (!(p.wall > 0) || !(p.error > 0)) continue;
-      if (first) cairo_move_to(cr.get(), X(p.wall), Y(p.error));
-      else cairo_line_to(cr.get(), X(p.wall), Y(p.error));
-      first = false;
-    }
-    cairo_stroke(cr.get());
-    for (const auto& p : series[i])
-      if (p.wall > 0 && p.error > 0) {
-        cairo_arc(cr.get(), X(p.wall), Y(p.error), 4, 0, 2 * M_PI);
-        cairo_fill(cr.get());
-      }
-    const double ly = T + 20 + 24 * double(i);
-    cairo_rectangle(cr.get(), W - R + 15, ly - 6, 20, 4), cairo_fill(cr.get());
-    cairo_set_source_rgb(cr.get(), 0, 0, 0);
-    chart::text(cr.get(), W - R + 42, ly, names[i], 13, chart::Align::Start, chart::Align::Centre);
-  }
-  chart::writePng(surf.get(), path);
-}
-
 std::string runDouble(const std::string& binary, const std::string& name, double cells, const std::string& shared,
                       Point& out) {
   std::string cmd = "\"" + binary + "\" work-precision --single " + name + " --cells " + fmt("%g", cells);
@@ -247,36 +177,9 @@ std::string runDouble(const std::string& binary, const std::string& name, double
   return in ? "" : std::string("unreadable output: ") + line;
 }
 
-} // namespace
-
-int runSingleCase(const std::string& caseName, const Resolution& res, const std::string& shared) {
-  for (const Case& c : cases(shared))
-    if (c.name == caseName) {
-      const Point p = c.run(res);
-      std::printf("%.9g %.6g %zu %llu %s\n", p.error, p.wall, p.particles, p.steps, p.detail.c_str());
-      return 0;
-    }
-  std::fprintf(stderr, "talus: unknown case '%s'\n", caseName.c_str());
-  return 2;
-}
-
-int runWorkPrecision(const WorkPrecisionOptions& opt) {
-  const auto started = std::chrono::steady_clock::now();
-  for (const std::string& f : {opt.markdown, opt.image}) {
-    const auto dir = std::filesystem::path(f).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir);
-  }
-  std::ostringstream md;
-  const int threads = int(tbb::info::default_concurrency());
-  const std::vector<Case> all = cases(opt.sharedDir);
-  md << "# Performance: speed against accuracy\n\n"
-     << "Regenerated by `talus work-precision` (`tools/work_precision.cpp`); every figure below was measured "
-     << "by that command on the machine it ran on (" << threads << " hardware threads"
-     << (opt.quick ? ", quick mode: fewer and coarser runs" : "") << "). Wall times are for the whole run of each "
-     << "case at " << threads << " threads, in single precision unless stated. Where the time goes per "
-     << "phase, and the measured speed-ups: docs/throughput.md.\n\n";
-
-  // 1. Refinement at fixed particles per cell and CFL.
+/// 1. Each case refined at fixed particles per cell and CFL; its points, per case, in `series`.
+std::vector<std::vector<Point>> refinementSection(std::ostringstream& md, const std::vector<Case>& all,
+                                                  const WorkPrecisionOptions& opt) {
   md << "## Error against resolution and cost\n\n"
      << "Each case is refined at 8 particles per cell and CFL 0.4. The observed order is "
      << "log2(e_coarse / e_fine) between successive levels.\n\n"
@@ -303,8 +206,12 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
     names.push_back(c.name);
     series.push_back(pts);
   }
-  plotWorkPrecision(opt.image, names, series);
+  work_precision::plot(opt.image, names, series);
+  return series;
+}
 
+/// What the refinement shows, and the resolution a user needs (text kept true by hand).
+void readingSection(std::ostringstream& md) {
   md << "## Reading these results\n"
        "\n"
        "- **Elastic bar**: first-order convergence of the period. The fixed end is a wall at a node, so the\n"
@@ -351,7 +258,10 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        "Cost of the basal and flow laws per particle-step: docs/throughput.md.\n"
        "\n";
 
-  // 2. Particles per cell and CFL at one resolution.
+}
+
+/// 2. Particles per cell and CFL at one resolution.
+void particlesPerCellSection(std::ostringstream& md, const std::vector<Case>& all, const WorkPrecisionOptions& opt) {
   md << "## Particles per cell and CFL\n\nSliding block at 4 cells across the block and elastic bar at 32 cells "
      << "along it (quick mode: 2 and 16).\n\n| case | particles/cell | CFL | particles | steps | wall (s) | error |\n"
      << "|---|---|---|---|---|---|---|\n";
@@ -367,7 +277,11 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
   }
   md << "\n";
 
-  // 3. Float against double.
+}
+
+/// 3. Float against double, at each case's second level (`series` from the refinement).
+void precisionSection(std::ostringstream& md, const std::vector<Case>& all, const WorkPrecisionOptions& opt,
+                      const std::vector<std::vector<Point>>& series) {
   md << "## Single against double precision\n\n";
   if (opt.doubleBinary.empty()) {
     md << "Not measured in this run: give `--double path/to/talus` built with `-DTALUS_DOUBLE=ON`.\n\n";
@@ -389,7 +303,10 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
     md << "\n";
   }
 
-  // 4. Throughput of every benchmark case.
+}
+
+/// 4. Throughput of every benchmark case.
+void throughputSection(std::ostringstream& md, const WorkPrecisionOptions& opt) {
   md << "## Throughput\n\n`talus bench`: particle-steps per second per core, time per phase, memory. On this\n"
         "shared 2-vCPU VM the 2-thread figures scatter between runs, more than the 1-thread ones (the\n"
         "same build measured 91-98 % efficiency for the 250 000-particle cases with `talus bench`\n"
@@ -409,7 +326,10 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        << fmt("%.0f", r.bytesPerParticle) << " | " << fmt("%.1f", r.bytesPerBlock / 1024) << " |\n";
   md << "\n";
 
-  // 5. How cost grows.
+}
+
+/// 5. How cost grows with particles and with the domain.
+void costSection(std::ostringstream& md, const WorkPrecisionOptions& opt, int threads) {
   md << "## How cost grows\n\nElastic slab (the `elastic` benchmark), " << threads << " threads. Against "
      << "particle count at a fixed domain:\n\n| particles | time per step (ms) | ns per particle-step | blocks |\n"
      << "|---|---|---|---|\n";
@@ -431,7 +351,10 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
   }
   md << "\n";
 
-  // 6. A thin layer on large terrain: grid memory of the sparse grid against a dense box.
+}
+
+/// 6. A thin layer on large terrain: grid memory of the sparse grid against a dense box.
+void sparseSection(std::ostringstream& md, const WorkPrecisionOptions& opt) {
   md << "## Sparse against dense grid memory\n\nA one-cell-thick layer (dx = 5 m, one particle per cell) "
      << "over a square of side s at the middle height of a 1 km tall domain of the same footprint:\n\n"
      << "| layer side (m) | particles | active blocks | grid memory (MB) | dense box of the domain (MB) |\n"
@@ -445,6 +368,45 @@ int runWorkPrecision(const WorkPrecisionOptions& opt) {
        << fmt("%.1f", double(sim.gridBytes()) / 1e6) << " | " << fmt("%.0f", dense) << " |\n";
   }
   md << "\n";
+
+}
+
+} // namespace
+
+int runSingleCase(const std::string& caseName, const Resolution& res, const std::string& shared) {
+  for (const Case& c : cases(shared))
+    if (c.name == caseName) {
+      const Point p = c.run(res);
+      std::printf("%.9g %.6g %zu %llu %s\n", p.error, p.wall, p.particles, p.steps, p.detail.c_str());
+      return 0;
+    }
+  std::fprintf(stderr, "talus: unknown case '%s'\n", caseName.c_str());
+  return 2;
+}
+
+int runWorkPrecision(const WorkPrecisionOptions& opt) {
+  const auto started = std::chrono::steady_clock::now();
+  for (const std::string& f : {opt.markdown, opt.image}) {
+    const auto dir = std::filesystem::path(f).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+  }
+  std::ostringstream md;
+  const int threads = int(tbb::info::default_concurrency());
+  const std::vector<Case> all = cases(opt.sharedDir);
+  md << "# Performance: speed against accuracy\n\n"
+     << "Regenerated by `talus work-precision` (`tools/work_precision.cpp`); every figure below was measured "
+     << "by that command on the machine it ran on (" << threads << " hardware threads"
+     << (opt.quick ? ", quick mode: fewer and coarser runs" : "") << "). Wall times are for the whole run of each "
+     << "case at " << threads << " threads, in single precision unless stated. Where the time goes per "
+     << "phase, and the measured speed-ups: docs/throughput.md.\n\n";
+
+  const std::vector<std::vector<Point>> series = refinementSection(md, all, opt);
+  readingSection(md);
+  particlesPerCellSection(md, all, opt);
+  precisionSection(md, all, opt, series);
+  throughputSection(md, opt);
+  costSection(md, opt, threads);
+  sparseSection(md, opt);
 
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::time_t now = std::time(nullptr);
