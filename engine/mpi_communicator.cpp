@@ -61,6 +61,12 @@ public:
   MpiCommunicator() {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    MPI_Op_create(&minThenSum, 1, &minThenSum_); // once: minimumAndSum runs every step
+  }
+  ~MpiCommunicator() override {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Op_free(&minThenSum_); // MPI_Finalize frees it otherwise
   }
   int rank() const override { return rank_; }
   int size() const override { return size_; }
@@ -92,10 +98,7 @@ public:
     MPI_Datatype type;
     MPI_Type_contiguous(checkedCount(buf.size()), MPI_DOUBLE, &type);
     MPI_Type_commit(&type);
-    MPI_Op op;
-    MPI_Op_create(&minThenSum, 1, &op);
-    MPI_Allreduce(MPI_IN_PLACE, buf.data(), 1, type, op, MPI_COMM_WORLD);
-    MPI_Op_free(&op);
+    MPI_Allreduce(MPI_IN_PLACE, buf.data(), 1, type, minThenSum_, MPI_COMM_WORLD);
     MPI_Type_free(&type);
     std::copy(buf.begin() + 1, buf.begin() + 1 + long(nMin), mins);
     std::copy(buf.begin() + 1 + long(nMin), buf.end(), sums);
@@ -180,6 +183,7 @@ private:
     return out;
   }
   int rank_ = 0, size_ = 1;
+  MPI_Op minThenSum_ = MPI_OP_NULL;
 };
 
 void finalizeAtExit() {

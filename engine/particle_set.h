@@ -78,7 +78,6 @@ template <class T> char* elementBytes(T& v) {
     return reinterpret_cast<char*>(v.data());
   }
 }
-template <class T> const char* elementBytes(const T& v) { return elementBytes(const_cast<T&>(v)); }
 } // namespace detail
 
 /// a[i] <- a[perm.index[i]] for i in [perm.begin, perm.end) (the identity elsewhere), through
@@ -99,7 +98,7 @@ void gatherInPlace(std::vector<T>& a, const Permutation& perm, ReorderScratch& s
   } else {
     constexpr size_t W = detail::kGatherSliceBytes;
     struct Slice {
-      alignas(alignof(T) < alignof(double) ? alignof(T) : alignof(double)) char bytes[W];
+      char bytes[W]; // moved by memcpy only
     };
     Slice* tmp = scratch.values<Slice>(perm.end - b);
     for (size_t o = 0; o < sizeof(T); o += W) {

@@ -5,16 +5,17 @@
 #include <algorithm>
 #include <cairo.h>
 #include <cmath>
-#include <cstdio>
 #include <memory>
+#include <sstream>
 
 namespace talus::work_precision {
 
 namespace {
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+/// A tick's label: a power of ten as %g prints it (0.01, 1, 1e-05).
+std::string decade(double d) {
+  std::ostringstream o;
+  o << d;
+  return o.str();
 }
 } // namespace
 
@@ -42,13 +43,13 @@ void plot(const std::string& path, const std::vector<std::string>& names, const 
     cairo_set_source_rgb(cr.get(), 0.85, 0.85, 0.85);
     cairo_move_to(cr.get(), X(d), T), cairo_line_to(cr.get(), X(d), H - B), cairo_stroke(cr.get());
     cairo_set_source_rgb(cr.get(), 0, 0, 0);
-    chart::text(cr.get(), X(d), H - B + 18, fmt("%g", d), 12, chart::Align::Centre);
+    chart::text(cr.get(), X(d), H - B + 18, decade(d), 12, chart::Align::Centre);
   }
   for (double d = y0; d <= y1 * 1.0001; d *= 10) {
     cairo_set_source_rgb(cr.get(), 0.85, 0.85, 0.85);
     cairo_move_to(cr.get(), L, Y(d)), cairo_line_to(cr.get(), W - R, Y(d)), cairo_stroke(cr.get());
     cairo_set_source_rgb(cr.get(), 0, 0, 0);
-    chart::text(cr.get(), L - 6, Y(d), fmt("%g", d), 12, chart::Align::End, chart::Align::Centre);
+    chart::text(cr.get(), L - 6, Y(d), decade(d), 12, chart::Align::End, chart::Align::Centre);
   }
   cairo_set_source_rgb(cr.get(), 0, 0, 0);
   cairo_rectangle(cr.get(), L, T, W - L - R, H - T - B), cairo_stroke(cr.get());
