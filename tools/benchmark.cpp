@@ -196,9 +196,26 @@ const Case& benchmarkCase(const std::string& name) {
 }
 } // namespace
 
-int benchmarkWarmup(const std::string& name, const BenchOptions& opt) { return opt.warmup + benchmarkCase(name).warmup; }
+bool isSceneFileCase(const std::string& name) { return name.size() > 5 && name.substr(name.size() - 5) == ".toml"; }
+
+int benchmarkWarmup(const std::string& name, const BenchOptions& opt) {
+  return opt.warmup + (isSceneFileCase(name) ? 0 : benchmarkCase(name).warmup);
+}
 
 SceneSetup benchmarkScene(const std::string& name, const BenchOptions& opt) {
+  if (isSceneFileCase(name)) {
+    // A user's scene as it stands; --scale refines its own dx, --flip and --fbar apply when given.
+    std::vector<std::string> set;
+    if (opt.flip > 0) set.push_back("simulation.flip=" + std::to_string(opt.flip));
+    if (opt.fbar) set.push_back("simulation.fbar=true");
+    if (opt.scale != 1) {
+      const double dx = loadSceneFile(name, set).settings.dx / std::cbrt(opt.scale);
+      char dxs[64];
+      std::snprintf(dxs, sizeof dxs, "simulation.dx=%.9g", dx);
+      set.push_back(dxs);
+    }
+    return loadSceneFile(name, set);
+  }
   const Case& c = benchmarkCase(name);
   char dxs[32], flips[48];
   std::snprintf(dxs, sizeof dxs, "%.6g", c.dx / std::cbrt(opt.scale));

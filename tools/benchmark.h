@@ -34,6 +34,8 @@ struct BenchResult {
 };
 
 std::vector<std::string> benchmarkCaseNames();
+/// Whether a case names a scene file (ends in .toml) rather than a built-in case.
+bool isSceneFileCase(const std::string& name);
 /// The scene of a benchmark case, its particle count multiplied by about opt.scale, with opt's
 /// AFLIP blend and F-bar.
 SceneSetup benchmarkScene(const std::string& name, const BenchOptions& opt);

@@ -162,7 +162,9 @@ int main(int argc, char** argv) {
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
-  benchCmd->add_option("--case", bench.cases, "Benchmark cases")->check(CLI::IsMember(benchmarkCaseNames()));
+  benchCmd
+      ->add_option("--case", bench.cases, "Benchmark cases: built-in names, or scene files (*.toml, --scale refines their dx)")
+      ->check(CLI::IsMember(benchmarkCaseNames()) | CLI::ExistingFile);
   benchCmd->add_option("--threads", bench.threads, "Thread counts to run (default: 1 2)");
   benchCmd->add_option("--steps", bench.steps, "Timed steps per run")->check(CLI::PositiveNumber);
   benchCmd->add_option("--scale", bench.scale, "Particle count multiplier")->check(CLI::PositiveNumber);
