@@ -23,6 +23,7 @@ int DomainDecomposition::owner(const BlockCoord& c) const {
 
 void DomainDecomposition::balance(std::vector<std::pair<BlockCoord, uint64_t>> blocks) {
   std::sort(blocks.begin(), blocks.end(), [](const auto& a, const auto& b) { return treeOrderLess(a.first, b.first); });
+  ++generation_;
   uint64_t total = 0;
   for (const auto& b : blocks) total += b.second;
   const int n = comm_->size();

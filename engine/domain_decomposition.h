@@ -55,6 +55,8 @@ public:
   int size() const { return comm_->size(); }
   /// Rank owning block c.
   int owner(const BlockCoord& c) const;
+  /// Changes whenever the ranges do (each balance()): caches of owner() compare it.
+  uint64_t generation() const { return generation_; }
 
   /// Collective. New ranges from the global owning blocks and their particle counts (any order):
   /// rank r gets the blocks whose cumulative count, in tree order, starts in [r, r+1) N/size,
@@ -100,6 +102,7 @@ private:
   double settled_ = 0; ///< the imbalance the last balance() left
   int sinceBalance_ = 0; ///< steps since then
   std::vector<BlockCoord> first_; ///< first block of ranks 1..size-1
+  uint64_t generation_ = 0;
   std::vector<double> shares_;    ///< empty: equal
   std::vector<ParticleOrder> order_;
 };

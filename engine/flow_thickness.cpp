@@ -142,9 +142,7 @@ FlowColumns::BlockLines FlowColumns::lines(const BlockCoord& c) const {
 }
 
 void FlowColumns::at(const BlockLines& L, int node, const Vec3& n, Real dx, Real& h, Real& rho) {
-  int a = 0;
-  for (int d = 1; d < 3; ++d)
-    if (std::abs(n[d]) > std::abs(n[a])) a = d;
+  const int a = axisOf(n);
   h = 0, rho = 0;
   const Line* line = L[size_t(a)];
   if (!line) return;

@@ -15,6 +15,7 @@
 #include "engine/sparse_grid.h"
 
 #include <array>
+#include <cmath>
 #include <unordered_map>
 #include <vector>
 
@@ -46,6 +47,13 @@ public:
   using BlockLines = std::array<const Line*, 3>;
   BlockLines lines(const BlockCoord& c) const;
 
+  /// The axis (0, 1, 2) of the line a node with contact normal n reads: the one closest to n.
+  static int axisOf(const Vec3& n) {
+    int a = 0;
+    for (int d = 1; d < 3; ++d)
+      if (std::abs(n[d]) > std::abs(n[a])) a = d;
+    return a;
+  }
   /// Thickness along the unit normal n (m) and density (kg/m3) at node n of a block with lines L.
   static void at(const BlockLines& L, int node, const Vec3& n, Real dx, Real& h, Real& rho);
 

@@ -4,7 +4,10 @@
 // Simulation::distribute swaps the first for the second. Private to the engine's step.
 #pragma once
 
+#include "engine/line_ranks.h"
 #include "engine/simulation.h"
+
+#include <memory>
 
 namespace talus {
 
@@ -69,7 +72,14 @@ public:
   [[noreturn]] void throwNonFinite() const override;
 
 private:
+  LineRanks& lineRanks(); ///< made at the first use (the domain's extent)
+  /// buildColumns' answers: per asking rank, this rank's counted blocks with flow on the lines it
+  /// asked for (records in lineRecords_); `mine` gets the indices of those it asked itself.
+  std::vector<std::vector<char>> answerLines(const std::vector<std::vector<char>>& asked, std::vector<uint32_t>& mine);
   Simulation& sim_;
+  std::unique_ptr<LineRanks> lineRanks_;
+  std::vector<char> lineRecords_; ///< this rank's blocks with flow (buildColumns), kept between steps
+  std::vector<Real> lineMasses_;
   double imbalance_ = 0; ///< of the particle counts after the last step's G2P (0 before the first)
 };
 

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <initializer_list>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace talus {
 
@@ -171,14 +173,68 @@ void Simulation::RankPhases::reduceLoads(Real dt) {
   }
 }
 
-void Simulation::RankPhases::buildColumns() {
+LineRanks& Simulation::RankPhases::lineRanks() {
+  if (!lineRanks_) {
+    // The blocks a particle inside the domain can own, and one more on every side.
+    const Simulation& s = sim_;
+    const Real invDx = Real(1 / s.settings().dx);
+    const Vec3 lo = s.settings().domain.min.cast<Real>(), hi = s.settings().domain.max.cast<Real>();
+    BlockCoord a = owningBlock(lo, invDx), b = owningBlock(hi, invDx);
+    a.x -= 1, a.y -= 1, a.z -= 1, b.x += 1, b.y += 1, b.z += 1;
+    lineRanks_ = std::make_unique<LineRanks>(*s.ranks_, a, b);
+  }
+  return *lineRanks_;
+}
+
+namespace {
+
+/// A thickness line asked for: its axis and the coordinate of one of its blocks (16 bytes).
+struct LineRequest {
+  int32_t axis;
+  BlockCoord block;
+};
+
+/// The lines this rank's grid update reads, each once: for every node in contact with a
+/// collider, the line along the axis closest to its normal (FlowColumns::axisOf) through its
+/// block, and the lines next to it (the thickest-line rule). Colliders must be prepared.
+std::vector<LineRequest> linesRead(const SparseGrid& grid, const std::vector<Collider*>& colliders) {
+  std::vector<LineRequest> out;
+  std::unordered_set<uint64_t> seen[3];
+  auto batch = std::make_unique<ContactBatch>();
+  for (uint32_t b = 0; b < grid.blockCount(); ++b) {
+    const BlockCoord& c = grid.topology.coord(b);
+    bool axes[3] = {false, false, false};
+    for (const Collider* col : colliders) {
+      col->gather(b, c, grid.dx, grid.block(b), *batch);
+      for (int i = 0; i < batch->count; ++i) axes[FlowColumns::axisOf(batch->contact[i].n)] = true;
+    }
+    for (int32_t axis = 0; axis < 3; ++axis)
+      for (int du = -1; du <= 1 && axes[axis]; ++du)
+        for (int dv = -1; dv <= 1; ++dv) {
+          BlockCoord key = c;
+          (axis == 0 ? key.y : key.x) += du, (axis == 2 ? key.y : key.z) += dv; // the two in-plane axes
+          (axis == 0 ? key.x : axis == 1 ? key.y : key.z) = 0;
+          if (seen[axis].insert(blockKey(key)).second) out.push_back({axis, key});
+        }
+  }
+  return out;
+}
+
+} // namespace
+
+std::vector<std::vector<char>> Simulation::RankPhases::answerLines(const std::vector<std::vector<char>>& asked,
+                                                                  std::vector<uint32_t>& mine) {
   Simulation& s = sim_;
-  // Lines cross the whole grid: every rank gets every block with flow (from the rank that counts
-  // it, whose node sums are complete) and adds them in one process's order. 4 KB per block.
+  const Communicator& comm = s.ranks_->comm();
+  const int me = comm.rank();
+  // This rank's counted blocks with flow, as records (kept between steps: no page faults), indexed
+  // by the line they lie on per axis.
   const auto& counted = s.halo_.counted();
   const size_t C = size_t(s.grid_.channels.count), T = size_t(s.grid_.channels.thickness);
   const size_t rec = sizeof(BlockCoord) + 2 * kBlockNodes * sizeof(float);
-  std::vector<char> mine;
+  std::vector<char>& records = lineRecords_;
+  records.clear();
+  std::unordered_map<uint64_t, std::vector<uint32_t>> onLine[3];
   std::vector<float> volume(kBlockNodes), mass(kBlockNodes);
   for (uint32_t b = 0; b < s.grid_.blockCount(); ++b) {
     if (!counted[b]) continue;
@@ -191,24 +247,79 @@ void Simulation::RankPhases::buildColumns() {
       flow |= volume[size_t(n)] > 0;
     }
     if (!flow) continue;
-    appendBlockRecord(mine, s.grid_.topology.coord(b),
-                      {{volume.data(), kBlockNodes * sizeof(float)}, {mass.data(), kBlockNodes * sizeof(float)}});
+    const BlockCoord c = s.grid_.topology.coord(b);
+    const uint32_t index = uint32_t(records.size() / rec);
+    appendBlockRecord(records, c, {{volume.data(), kBlockNodes * sizeof(float)}, {mass.data(), kBlockNodes * sizeof(float)}});
+    for (int axis = 0; axis < 3; ++axis) {
+      BlockCoord key = c;
+      (axis == 0 ? key.x : axis == 1 ? key.y : key.z) = 0;
+      onLine[axis][blockKey(key)].push_back(index);
+    }
   }
-  std::vector<size_t> counts;
-  const std::vector<char> all = s.ranks_->comm().allGather(mine, counts);
-  const auto blocks = recordsInTreeOrder(all, rec);
-  // Copied out of the byte records: the lines read them as floats (and Reals) in place.
-  std::vector<float> volumes(blocks.size() * kBlockNodes);
-  std::vector<Real> masses(blocks.size() * kBlockNodes);
+  // Each asking rank gets each of its lines' blocks once; this rank's own are read in place.
+  std::vector<std::vector<char>> answers(size_t(comm.size()));
+  std::vector<int> sentTo(records.size() / rec, -1);
+  for (int r = 0; r < comm.size(); ++r) {
+    const std::vector<char>& lines = asked[size_t(r)];
+    for (size_t at = 0; at + sizeof(LineRequest) <= lines.size(); at += sizeof(LineRequest)) {
+      LineRequest q;
+      std::memcpy(&q, lines.data() + at, sizeof q);
+      const auto it = onLine[q.axis].find(blockKey(q.block));
+      if (it == onLine[q.axis].end()) continue;
+      for (uint32_t i : it->second) {
+        if (sentTo[i] == r) continue;
+        sentTo[i] = r;
+        if (r == me) mine.push_back(i);
+        else answers[size_t(r)].insert(answers[size_t(r)].end(), records.begin() + long(i * rec), records.begin() + long((i + 1) * rec));
+      }
+    }
+  }
+  return answers;
+}
+
+void Simulation::RankPhases::buildColumns() {
+  Simulation& s = sim_;
+  // Lines cross the whole grid. Each rank asks the ranks that may hold blocks of the lines its
+  // contact nodes read (LineRanks), and each answers with its blocks with flow on them that it
+  // counts (its node sums are complete): every line a rank reads arrives whole, and it adds each
+  // line's blocks in one process's order. 16 bytes per line asked, 4 KB per block sent.
+  Communicator& comm = s.ranks_->comm();
+  std::vector<std::vector<char>> asks(size_t(comm.size()));
+  for (const LineRequest& q : linesRead(s.grid_, s.colliderPtrs_))
+    for (int r : lineRanks().holders(q.block, q.axis)) {
+      std::vector<char>& to = asks[size_t(r)];
+      to.resize(to.size() + sizeof q);
+      std::memcpy(to.data() + to.size() - sizeof q, &q, sizeof q);
+    }
+  const std::vector<std::vector<char>> asked = comm.exchange(asks);
+
+  std::vector<uint32_t> mine; // this rank's own answers, read in place
+  std::vector<std::vector<char>> answers = answerLines(asked, mine);
+  const size_t rec = sizeof(BlockCoord) + 2 * kBlockNodes * sizeof(float);
+  const std::vector<char>& records = lineRecords_;
+  std::vector<float> mass(kBlockNodes);
+  const std::vector<std::vector<char>> received = comm.exchange(answers);
+  std::vector<std::pair<BlockCoord, const char*>> blocks;
+  auto add = [&](const char* p) {
+    BlockCoord c;
+    std::memcpy(&c, p, sizeof c);
+    blocks.push_back({c, p + sizeof c});
+  };
+  for (uint32_t i : mine) add(records.data() + size_t(i) * rec);
+  for (const std::vector<char>& from : received)
+    for (size_t at = 0; at + rec <= from.size(); at += rec) add(from.data() + at);
+  std::sort(blocks.begin(), blocks.end(), [](const auto& x, const auto& y) { return treeOrderLess(x.first, y.first); });
+  // The volumes are read in the records (floats, 4-byte aligned); the masses become Reals.
+  std::vector<Real>& masses = lineMasses_;
+  masses.resize(blocks.size() * kBlockNodes);
   std::vector<FlowColumns::BlockFlow> flows;
+  flows.reserve(blocks.size());
   for (size_t i = 0; i < blocks.size(); ++i) {
     const auto& [c, p] = blocks[i];
-    float* v = volumes.data() + i * kBlockNodes;
     Real* m = masses.data() + i * kBlockNodes;
-    std::memcpy(v, p, kBlockNodes * sizeof(float));
     std::memcpy(mass.data(), p + kBlockNodes * sizeof(float), kBlockNodes * sizeof(float));
     std::copy(mass.begin(), mass.end(), m);
-    flows.push_back({c, v, 1, m, 1});
+    flows.push_back({c, reinterpret_cast<const float*>(p), 1, m, 1});
   }
   s.columns_.build(flows);
 }

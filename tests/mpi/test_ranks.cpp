@@ -287,6 +287,13 @@ TEST(Ranks, AThicknessLawsSlabIsBitIdentical) {
   expectInvariant(r, test::kSamosAtSlab, {}, 150);
 }
 
+// Each rank asks only for the lines its contact nodes read (engine/line_ranks.h): here lines
+// along x, through blocks of several ranks.
+TEST(Ranks, AThicknessLawOnASteepSlopeIsBitIdentical) {
+  RankRun r = runDistributed(test::kSamosAtSteepSlope, {}, 150);
+  expectInvariant(r, test::kSamosAtSteepSlope, {}, 150);
+}
+
 TEST(Ranks, TheDefaultTerrainSceneIsBitIdentical) {
   RankRun r = runDistributed(defaultSceneText(), {"simulation.end_time=0.3"}, 120);
   expectInvariant(r, defaultSceneText(), {"simulation.end_time=0.3"}, 120);
