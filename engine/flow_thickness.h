@@ -57,8 +57,10 @@ public:
   /// Thickness along the unit normal n (m) and density (kg/m3) at node n of a block with lines L.
   static void at(const BlockLines& L, int node, const Vec3& n, Real dx, Real& h, Real& rho);
 
-private:
+  /// Key of the line through block c along axis: the same for every block of the line.
   static uint64_t lineKey(const BlockCoord& c, int axis);
+
+private:
   void dilate(int axis, size_t line);
   // Per axis: the lines (storage kept between steps), their index by key, and which blocks (indices
   // into build's list) each line sums, as offsets into `members_`.

@@ -1,6 +1,6 @@
 #include "engine/line_ranks.h"
 
-#include "engine/sparse_grid.h"
+#include "engine/flow_thickness.h"
 
 namespace talus {
 
@@ -11,9 +11,7 @@ void inPlane(int axis, int& u, int& v) { u = axis == 0 ? 1 : 0, v = axis == 2 ? 
 } // namespace
 
 const std::vector<uint64_t>& LineRanks::lineOwners(const BlockCoord& c, int axis) {
-  BlockCoord key = c;
-  along(key, axis) = 0;
-  auto [it, fresh] = owners_[axis].try_emplace(blockKey(key));
+  auto [it, fresh] = owners_[axis].try_emplace(FlowColumns::lineKey(c, axis));
   if (!fresh) return it->second;
   std::vector<uint64_t>& bits = it->second;
   bits.assign((size_t(ranks_.size()) + 63) / 64, 0);
@@ -37,9 +35,7 @@ const std::vector<int>& LineRanks::holders(const BlockCoord& c, int axis) {
     for (auto& h : holders_) h.clear();
     generation_ = ranks_.generation();
   }
-  BlockCoord key = c;
-  along(key, axis) = 0;
-  auto [at, fresh] = holders_[axis].try_emplace(blockKey(key));
+  auto [at, fresh] = holders_[axis].try_emplace(FlowColumns::lineKey(c, axis));
   std::vector<int>& out = at->second;
   if (!fresh) return out;
   mask_.assign((size_t(ranks_.size()) + 63) / 64, 0);
@@ -47,7 +43,7 @@ const std::vector<int>& LineRanks::holders(const BlockCoord& c, int axis) {
   inPlane(axis, u, v);
   for (int du = -kReach; du <= kReach; ++du)
     for (int dv = -kReach; dv <= kReach; ++dv) {
-      BlockCoord n = key;
+      BlockCoord n = c;
       along(n, u) += du, along(n, v) += dv;
       const std::vector<uint64_t>& bits = lineOwners(n, axis);
       for (size_t w = 0; w < bits.size(); ++w) mask_[w] |= bits[w];

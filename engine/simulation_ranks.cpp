@@ -56,15 +56,26 @@ void appendBlockRecord(std::vector<char>& out, const BlockCoord& c,
   for (const auto& [data, n] : parts) std::memcpy(out.data() + at, data, n), at += n;
 }
 
-/// Gathered records of `rec` bytes each, as (coordinate, payload), in one process's block order.
-std::vector<std::pair<BlockCoord, const char*>> recordsInTreeOrder(const std::vector<char>& all, size_t rec) {
-  std::vector<std::pair<BlockCoord, const char*>> out;
-  for (size_t at = 0; at + rec <= all.size(); at += rec) {
+using BlockRecords = std::vector<std::pair<BlockCoord, const char*>>;
+
+/// Appends the records of `rec` bytes in data[0, bytes) to `out` as (coordinate, payload).
+void listRecords(const char* data, size_t bytes, size_t rec, BlockRecords& out) {
+  for (size_t at = 0; at + rec <= bytes; at += rec) {
     BlockCoord c;
-    std::memcpy(&c, all.data() + at, sizeof c);
-    out.push_back({c, all.data() + at + sizeof c});
+    std::memcpy(&c, data + at, sizeof c);
+    out.push_back({c, data + at + sizeof c});
   }
-  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return treeOrderLess(x.first, y.first); });
+}
+
+void sortInTreeOrder(BlockRecords& r) {
+  std::sort(r.begin(), r.end(), [](const auto& x, const auto& y) { return treeOrderLess(x.first, y.first); });
+}
+
+/// Gathered records of `rec` bytes each, as (coordinate, payload), in one process's block order.
+BlockRecords recordsInTreeOrder(const std::vector<char>& all, size_t rec) {
+  BlockRecords out;
+  listRecords(all.data(), all.size(), rec, out);
+  sortInTreeOrder(out);
   return out;
 }
 } // namespace
@@ -208,14 +219,15 @@ std::vector<LineRequest> linesRead(const SparseGrid& grid, const std::vector<Col
       col->gather(b, c, grid.dx, grid.block(b), *batch);
       for (int i = 0; i < batch->count; ++i) axes[FlowColumns::axisOf(batch->contact[i].n)] = true;
     }
-    for (int32_t axis = 0; axis < 3; ++axis)
-      for (int du = -1; du <= 1 && axes[axis]; ++du)
+    for (int32_t axis = 0; axis < 3; ++axis) {
+      if (!axes[axis]) continue;
+      for (int du = -1; du <= 1; ++du)
         for (int dv = -1; dv <= 1; ++dv) {
-          BlockCoord key = c;
-          (axis == 0 ? key.y : key.x) += du, (axis == 2 ? key.y : key.z) += dv; // the two in-plane axes
-          (axis == 0 ? key.x : axis == 1 ? key.y : key.z) = 0;
-          if (seen[axis].insert(blockKey(key)).second) out.push_back({axis, key});
+          BlockCoord line = c;
+          (axis == 0 ? line.y : line.x) += du, (axis == 2 ? line.y : line.z) += dv; // the two in-plane axes
+          if (seen[axis].insert(FlowColumns::lineKey(line, axis)).second) out.push_back({axis, line});
         }
+    }
   }
   return out;
 }
@@ -250,11 +262,7 @@ std::vector<std::vector<char>> Simulation::RankPhases::answerLines(const std::ve
     const BlockCoord c = s.grid_.topology.coord(b);
     const uint32_t index = uint32_t(records.size() / rec);
     appendBlockRecord(records, c, {{volume.data(), kBlockNodes * sizeof(float)}, {mass.data(), kBlockNodes * sizeof(float)}});
-    for (int axis = 0; axis < 3; ++axis) {
-      BlockCoord key = c;
-      (axis == 0 ? key.x : axis == 1 ? key.y : key.z) = 0;
-      onLine[axis][blockKey(key)].push_back(index);
-    }
+    for (int axis = 0; axis < 3; ++axis) onLine[axis][FlowColumns::lineKey(c, axis)].push_back(index);
   }
   // Each asking rank gets each of its lines' blocks once; this rank's own are read in place.
   std::vector<std::vector<char>> answers(size_t(comm.size()));
@@ -264,7 +272,7 @@ std::vector<std::vector<char>> Simulation::RankPhases::answerLines(const std::ve
     for (size_t at = 0; at + sizeof(LineRequest) <= lines.size(); at += sizeof(LineRequest)) {
       LineRequest q;
       std::memcpy(&q, lines.data() + at, sizeof q);
-      const auto it = onLine[q.axis].find(blockKey(q.block));
+      const auto it = onLine[q.axis].find(FlowColumns::lineKey(q.block, q.axis));
       if (it == onLine[q.axis].end()) continue;
       for (uint32_t i : it->second) {
         if (sentTo[i] == r) continue;
@@ -299,16 +307,10 @@ void Simulation::RankPhases::buildColumns() {
   const std::vector<char>& records = lineRecords_;
   std::vector<float> mass(kBlockNodes);
   const std::vector<std::vector<char>> received = comm.exchange(answers);
-  std::vector<std::pair<BlockCoord, const char*>> blocks;
-  auto add = [&](const char* p) {
-    BlockCoord c;
-    std::memcpy(&c, p, sizeof c);
-    blocks.push_back({c, p + sizeof c});
-  };
-  for (uint32_t i : mine) add(records.data() + size_t(i) * rec);
-  for (const std::vector<char>& from : received)
-    for (size_t at = 0; at + rec <= from.size(); at += rec) add(from.data() + at);
-  std::sort(blocks.begin(), blocks.end(), [](const auto& x, const auto& y) { return treeOrderLess(x.first, y.first); });
+  BlockRecords blocks;
+  for (uint32_t i : mine) listRecords(records.data() + size_t(i) * rec, rec, rec, blocks);
+  for (const std::vector<char>& from : received) listRecords(from.data(), from.size(), rec, blocks);
+  sortInTreeOrder(blocks);
   // The volumes are read in the records (floats, 4-byte aligned); the masses become Reals.
   std::vector<Real>& masses = lineMasses_;
   masses.resize(blocks.size() * kBlockNodes);
