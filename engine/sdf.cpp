@@ -2,6 +2,7 @@
 
 #include "engine/block_topology.h"
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <tbb/parallel_for.h>
@@ -58,6 +59,15 @@ void SdfCache::attach(const BlockTopology& topo, std::vector<const SdfBlock*>& o
     auto it = slots_.find(blockKey(topo.coord(b)));
     if (it == slots_.end()) missing.push_back(b);
     else if (it->second >= 0) out[b] = blocks_[it->second].get();
+  }
+  if (n > 0) { // the terrain this process still needs: around its active blocks
+    BlockCoord lo = topo.coord(0), hi = lo;
+    for (uint32_t b = 1; b < n; ++b) {
+      const BlockCoord& c = topo.coord(b);
+      lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
+      hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
+    }
+    sdf_->focus(lo, hi, dx_);
   }
   if (missing.empty()) return;
   std::vector<std::unique_ptr<SdfBlock>> fresh(missing.size());

@@ -37,6 +37,14 @@ public:
   /// Box holding the solid's surface (local frame); unbounded when unknown.
   virtual void bounds(Vec3d& lo, Vec3d& hi) const;
   virtual std::string describe() const = 0;
+  /// Bytes this solid holds in memory (a level set's loaded values); 0 for analytic solids.
+  virtual size_t residentBytes() const { return 0; }
+  /// From now on, distance(), normal() and sampleBlock() are asked only within the blocks
+  /// [lo, hi] (inclusive, at dx) and one block around them, until the next call. A solid read
+  /// from a file may then drop what lies farther (a rank's terrain shrinks to its part) and
+  /// read again what a later call asks for; its values do not change. Not thread-safe: call
+  /// between parallel phases. A query outside may throw std::logic_error. Default: no-op.
+  virtual void focus(const BlockCoord& lo, const BlockCoord& hi, double dx) const { (void)lo, (void)hi, (void)dx; }
 };
 
 /// The plane through `point` with upward unit normal `normal` (local frame).

@@ -19,6 +19,14 @@ public:
   bool sampleBlock(const BlockCoord& c, double dx, SdfBlock& out) const override;
   double distance(const Vec3d& x) const override;
   std::string describe() const override;
+  size_t residentBytes() const override {
+    size_t b = 0;
+    for (const auto& p : parts_) b += p->residentBytes();
+    return b;
+  }
+  void focus(const BlockCoord& lo, const BlockCoord& hi, double dx) const override {
+    for (const auto& p : parts_) p->focus(lo, hi, dx);
+  }
 
 private:
   std::vector<std::shared_ptr<const Sdf>> parts_;

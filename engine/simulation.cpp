@@ -380,6 +380,8 @@ size_t Simulation::gridBytes() const {
   return b;
 }
 
+size_t Simulation::terrainBytes() const { return settings_.terrain ? settings_.terrain->residentBytes() : 0; }
+
 } // namespace talus
 
 namespace talus {

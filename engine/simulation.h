@@ -198,6 +198,9 @@ public:
   /// Bytes held by particles (including model state) and by the grid and terrain cache.
   size_t particleBytes() const;
   size_t gridBytes() const;
+  /// Bytes the terrain holds in memory (Sdf::residentBytes: an on-demand level set's loaded
+  /// leaves), beside its per-block samples that gridBytes counts. 0 without terrain.
+  size_t terrainBytes() const;
   /// Bytes of the buffers binning keeps between steps (about 44 per particle of the largest group).
   size_t scratchBytes() const { return reorder_.bytes(); }
 

@@ -6,8 +6,10 @@
 #include "terrain_test_support.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 #include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -147,6 +149,83 @@ TEST(TerrainLevelSet, CurvedTerrainMatchesBruteForceDistance) {
   std::printf("[ measured ] curved: max error closest-point %.4f dx, vertical difference %.4f dx\n", errCp / dx,
               errVert / dx);
   EXPECT_LT(errCp, 0.05 * dx);
+}
+
+// The terrain cache is read on demand (VdbLoading::OnDemand): the same values as a whole read,
+// bit for bit, with only the leaves a process samples in memory, so a rank whose blocks cover
+// a corner of the terrain holds about that corner's values, not the whole level set.
+TEST(TerrainLevelSet, OnDemandReadsTheSameValuesAndHoldsOnlyTheLeavesItSamples) {
+  const std::string dir = test::tempDir("ls_on_demand");
+  const double x0 = 2600000, y0 = 1200000, cell = 2;
+  auto h = [&](double x, double y) { return 1200 + 0.3 * (x - x0) + 20 * std::sin((y - y0) / 40); };
+  const DemRaster dem = test::makeDem(600, 600, cell, x0, y0, h);
+  const HeightField f(dem);
+  const double dx = 2;
+  const Vec3d origin(x0 + 1, y0 + 1, 1000);
+  buildDemLevelSet(f, optionsFor(f, dx, origin), dir + "/t.vdb");
+  const VdbLevelSet whole(dir + "/t.vdb", "", origin), lazy(dir + "/t.vdb", "", origin, VdbLoading::OnDemand);
+  const double wholeBytes = double(whole.residentBytes()), layout = double(lazy.residentBytes());
+  // The layout alone: about 150 bytes per leaf of 2 KB values, and the internal nodes (33 KB per
+  // 128-voxel cube holding leaves, 270 KB per 1024-voxel cube): 13 % of the whole here, 15 % on
+  // Wolfsgruben at dx 2.5 m. Read whole, it would be 100 %.
+  EXPECT_LT(layout, 0.2 * wholeBytes) << "an on-demand level set read its values up front";
+  // A corner: blocks 0..3 in x and y (64 m of the 1 200 m square), down the terrain's column there.
+  int sampled = 0;
+  for (int bx = 0; bx < 4; ++bx)
+    for (int by = 0; by < 4; ++by)
+      for (int bz = 0; bz < 30; ++bz) {
+        SdfBlock a{}, b{};
+        const BlockCoord c{bx, by, bz};
+        const bool ga = whole.sampleBlock(c, dx, a), gb = lazy.sampleBlock(c, dx, b);
+        ASSERT_EQ(ga, gb);
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "block " << bx << " " << by << " " << bz;
+        sampled += ga;
+      }
+  ASSERT_GT(sampled, 0) << "the corner's blocks hold no ground: the test would compare nothing";
+  EXPECT_EQ(whole.distance(Vec3d(123.4, 56.7, 250)), lazy.distance(Vec3d(123.4, 56.7, 250)));
+  const double held = double(lazy.residentBytes());
+  std::printf("[ measured ] on demand: layout %.2f MB, after a corner %.2f MB, whole %.2f MB\n", layout / 1e6,
+              held / 1e6, wholeBytes / 1e6);
+  EXPECT_GT(held, layout) << "sampling loaded no leaf: residentBytes does not count what it reads";
+  // The corner is 1/350 of the square's area; its leaves (with their neighbours for the
+  // normals and the interpolation) stay well under a twentieth of the values.
+  EXPECT_LT(held - layout, 0.05 * (wholeBytes - layout));
+
+  // focus(): the layout too, only around the blocks (a rank's part), read again as they move.
+  auto sameBlocks = [&](int x0, int y0) {
+    for (int bx = x0; bx < x0 + 2; ++bx)
+      for (int by = y0; by < y0 + 2; ++by)
+        for (int bz = 0; bz < 30; ++bz) {
+          SdfBlock a{}, b{};
+          const BlockCoord c{bx, by, bz};
+          const bool ga = whole.sampleBlock(c, dx, a), gb = lazy.sampleBlock(c, dx, b);
+          if (ga != gb || std::memcmp(&a, &b, sizeof a) != 0) return false;
+        }
+    return true;
+  };
+  lazy.focus({0, 0, 0}, {1, 1, 29}, dx);
+  EXPECT_TRUE(sameBlocks(0, 0));
+  const double corner = double(lazy.residentBytes());
+  // Kept: the blocks and 4 around them (12 x 12 of 75 x 75 blocks), in one 1024-voxel node
+  // (270 KB) and a few 128-voxel ones; measured 0.67 MB against the whole layout's 3.9 MB.
+  EXPECT_LT(corner, 0.25 * layout) << "focus kept the whole layout";
+  EXPECT_THROW(lazy.distance(Vec3d(380, 380, 250)), std::logic_error) << "a query outside answered silently";
+  lazy.focus({20, 20, 0}, {21, 21, 29}, dx); // the far corner: read again there
+  EXPECT_TRUE(sameBlocks(20, 20));
+  EXPECT_EQ(whole.distance(Vec3d(340, 340, 250)), lazy.distance(Vec3d(340, 340, 250)));
+  EXPECT_THROW(lazy.distance(Vec3d(10, 10, 250)), std::logic_error);
+  std::printf("[ measured ] focused on 2 x 2 blocks of 75 x 75: %.2f MB\n", corner / 1e6);
+
+  // The cache cleared during a run: the next read names the file instead of crashing.
+  std::filesystem::copy_file(dir + "/t.vdb", dir + "/gone.vdb");
+  const VdbLevelSet gone(dir + "/gone.vdb", "", origin, VdbLoading::OnDemand);
+  std::filesystem::remove(dir + "/gone.vdb");
+  try {
+    gone.focus({0, 0, 0}, {1, 1, 29}, dx);
+    ADD_FAILURE() << "a removed file was read again";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("gone.vdb"), std::string::npos) << e.what();
+  }
 }
 
 TEST(TerrainLevelSet, SignIsRightFarBelowAndAboveTheBand) {

@@ -124,7 +124,7 @@ CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOpt
   if (fs::exists(out.path)) {
     try {
       const auto t0 = Clock::now();
-      out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin);
+      out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin, VdbLoading::OnDemand);
       out.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
       out.reused = true;
       return out;
@@ -134,7 +134,7 @@ CachedLevelSet cachedDemLevelSet(const DemRaster& ground, const LevelSetBuildOpt
   }
   out.stats = buildDemLevelSet(HeightField(ground), o, out.path);
   const auto t0 = Clock::now();
-  out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin);
+  out.sdf = std::make_shared<VdbLevelSet>(out.path, "terrain", o.origin, VdbLoading::OnDemand);
   out.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return out;
 }
