@@ -78,7 +78,14 @@ TEST(RunOnRanks, TheDefaultScenesFilesAtTwoAndFourRanksAreOneProcesss) {
     const std::string summary = bytes(to + "/summary.json");
     EXPECT_NE(summary.find("\"ranks\": " + std::to_string(n)), std::string::npos);
     EXPECT_NE(summary.find("\"communication_seconds\""), std::string::npos);
+    // Each rank's memory: its particles, grid, terrain and peak resident set.
+    size_t ranksWithMemory = 0;
+    for (size_t at = summary.find("\"memory_bytes\": {\"particles\": "); at != std::string::npos;
+         at = summary.find("\"memory_bytes\": {\"particles\": ", at + 1))
+      ++ranksWithMemory;
+    EXPECT_EQ(ranksWithMemory, size_t(n));
   }
+  EXPECT_NE(bytes(dir + "/one/summary.json").find("\"memory_bytes\": {\"particles\": "), std::string::npos);
 }
 
 TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {

@@ -237,6 +237,7 @@ void Run::finish() {
     });
   }
   if (s.ranks.active()) s.info.ranks = rankFigures(*sim_);
+  else s.info.memory = memoryFigures(*sim_);
   record();
   s.ranks.onRoot([&] {
     const std::string summary = writeSummaryJson(s.summaryFile, *s.view, s.info);

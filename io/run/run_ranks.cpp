@@ -37,6 +37,7 @@ std::vector<RankFigures> rankFigures(const Simulation& sim) {
   f.rebalances = dd.rebalances;
   f.communicationSeconds = dd.comm().seconds;
   f.computeSeconds = sim.phaseTimes().total() - sim.phaseTimes().halo;
+  f.memory = memoryFigures(sim);
   std::vector<char> mine(sizeof f);
   std::memcpy(mine.data(), &f, sizeof f);
   std::vector<size_t> counts;

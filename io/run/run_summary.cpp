@@ -10,6 +10,8 @@
 #include <limits>
 #include <sstream>
 
+#include <sys/resource.h>
+
 namespace talus {
 
 namespace {
@@ -20,7 +22,19 @@ std::string num(double v) {
   return o.str();
 }
 std::string vec(const Vec3d& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; }
+std::string memoryJson(const MemoryFigures& m) {
+  return "{\"particles\": " + std::to_string(m.particles) + ", \"grid\": " + std::to_string(m.grid) +
+         ", \"terrain\": " + std::to_string(m.terrain) + ", \"peak_resident\": " + std::to_string(m.peakResident) + "}";
+}
 } // namespace
+
+MemoryFigures memoryFigures(const Simulation& sim) {
+  MemoryFigures m;
+  m.particles = sim.particleBytes(), m.grid = sim.gridBytes(), m.terrain = sim.terrainBytes();
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) == 0) m.peakResident = uint64_t(u.ru_maxrss) * 1024; // Linux: kilobytes
+  return m;
+}
 
 std::string writeSummaryJson(const std::string& path, const Simulation& sim, const RunInfo& info) {
   std::ostringstream j;
@@ -42,9 +56,11 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
       j << "    {\"rank\": " << r << ", \"particles\": " << f.particles << ", \"blocks\": " << f.blocks
         << ", \"compute_seconds\": " << num(f.computeSeconds) << ", \"communication_seconds\": "
         << num(f.communicationSeconds) << ", \"bytes_sent\": " << f.bytesSent << ", \"rebalances\": " << f.rebalances
-        << "}" << (r + 1 < info.ranks.size() ? "," : "") << "\n";
+        << ", \"memory_bytes\": " << memoryJson(f.memory) << "}" << (r + 1 < info.ranks.size() ? "," : "") << "\n";
     }
     j << "  ],\n";
+  } else {
+    j << "  \"memory_bytes\": " << memoryJson(info.memory) << ",\n";
   }
   j << "  \"particles\": " << sim.particleCount() << ",\n";
   j << "  \"particle_steps\": " << sim.particleSteps() << ",\n";

@@ -10,11 +10,22 @@
 
 namespace talus {
 
+/// What one process holds at the end of a run (summary.json "memory_bytes"), bytes.
+struct MemoryFigures {
+  uint64_t particles = 0; ///< the engine's particles with their model state (Simulation::particleBytes)
+  uint64_t grid = 0;      ///< grid blocks and the colliders' per-block samples (Simulation::gridBytes)
+  uint64_t terrain = 0;   ///< the terrain's level set values in memory (Simulation::terrainBytes)
+  uint64_t peakResident = 0; ///< the process's peak resident set (getrusage), program and outputs included
+};
+/// The engine's figures of `sim` and this process's peak resident set.
+MemoryFigures memoryFigures(const Simulation& sim);
+
 /// One MPI rank's share of a run (summary.json "ranks").
 struct RankFigures {
   uint64_t particles = 0, blocks = 0, bytesSent = 0, rebalances = 0;
   double computeSeconds = 0;       ///< the step's phases other than communication
   double communicationSeconds = 0; ///< migration, halo, reductions and gathers (waiting included)
+  MemoryFigures memory;            ///< the rank's engine (rank 0's output view only in peakResident)
 };
 
 struct RunInfo {
@@ -27,6 +38,7 @@ struct RunInfo {
   std::vector<OutputReport> outputs;
   std::vector<std::string> notes; ///< the scene's notes and warnings (thin bodies, filled DEM cells)
   std::vector<RankFigures> ranks;  ///< under mpirun, per rank (empty for one process)
+  MemoryFigures memory;            ///< one process's (under mpirun: per rank in `ranks`)
 };
 
 /// Writes summary.json and returns its text (the report page embeds it).
