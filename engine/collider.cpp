@@ -71,7 +71,7 @@ void Collider::prepare(const BlockTopology& topology, double dx, double t) {
     motion_.pose(t, R_, d_);
     return;
   }
-  if (!cache_) cache_ = std::make_unique<SdfCache>(sdf_, dx);
+  if (!cache_) cache_ = std::make_unique<SdfCache>(sdf_, dx, focusSolid_);
   cache_->attach(topology, blocks_);
   if (!params_) return;
   // Parameters of the nodes of blocks near the surface, sampled the first time a block is active.

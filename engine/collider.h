@@ -91,6 +91,9 @@ public:
 
   /// Law parameters that vary in space (a collider at rest only); null: the law's own everywhere.
   void setParameters(std::shared_ptr<const ParameterField> field) { params_ = std::move(field); }
+  /// Whether the solid may keep only the part around the active blocks (Sdf::focus; default
+  /// true). False when something else queries it anywhere during the run.
+  void setFocusSolid(bool focus) { focusSolid_ = focus; }
 
   size_t memoryBytes() const {
     return (cache_ ? cache_->memoryBytes() + blocks_.capacity() * sizeof(void*) : 0) +
@@ -115,6 +118,7 @@ private:
   ColliderMotion motion_;
   Vec3d reference_ = Vec3d::Zero();
   std::unique_ptr<SdfCache> cache_;       ///< at rest: phi and normals per block, sampled once
+  bool focusSolid_ = true;
   std::vector<const SdfBlock*> blocks_;   ///< at rest: per active block, its cache or null
   std::shared_ptr<const ParameterField> params_;
   std::unordered_map<uint64_t, std::vector<float>> paramCache_; ///< per block key: count() per node

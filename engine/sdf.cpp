@@ -60,7 +60,7 @@ void SdfCache::attach(const BlockTopology& topo, std::vector<const SdfBlock*>& o
     if (it == slots_.end()) missing.push_back(b);
     else if (it->second >= 0) out[b] = blocks_[it->second].get();
   }
-  if (n > 0) { // the terrain this process still needs: around its active blocks
+  if (focus_ && n > 0) { // the terrain this process still needs: around its active blocks
     BlockCoord lo = topo.coord(0), hi = lo;
     for (uint32_t b = 1; b < n; ++b) {
       const BlockCoord& c = topo.coord(b);

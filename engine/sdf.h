@@ -61,7 +61,9 @@ private:
 
 class SdfCache {
 public:
-  SdfCache(std::shared_ptr<const Sdf> sdf, double dx) : sdf_(std::move(sdf)), dx_(dx) {}
+  /// @param focus  tell the solid which blocks are active at each attach (Sdf::focus); false
+  ///               when something else queries the solid elsewhere during the run
+  SdfCache(std::shared_ptr<const Sdf> sdf, double dx, bool focus = true) : sdf_(std::move(sdf)), dx_(dx), focus_(focus) {}
   /// Fill `out[b]` for every active block: its cached data, or nullptr when it holds no ground node.
   void attach(const BlockTopology& topo, std::vector<const SdfBlock*>& out);
   size_t memoryBytes() const { return blocks_.size() * sizeof(SdfBlock) + slots_.size() * 16; }
@@ -69,6 +71,7 @@ public:
 private:
   std::shared_ptr<const Sdf> sdf_;
   double dx_;
+  bool focus_;
   std::unordered_map<uint64_t, int32_t> slots_; ///< block key -> index in blocks_, -1 when empty
   std::vector<std::unique_ptr<SdfBlock>> blocks_;
 };

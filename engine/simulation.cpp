@@ -78,6 +78,9 @@ void Simulation::buildColliders() {
     colliders_.push_back(std::make_unique<Collider>("terrain", settings_.terrain, settings_.terrainLaw, ColliderMotion{},
                                                     Vec3d::Zero()));
     colliders_.back()->setParameters(settings_.terrainParameters);
+    // An erodible bed projects its pools onto the ground wherever they lie, long after the
+    // flow's blocks left them (ErodibleBed::release): the terrain then stays whole.
+    colliders_.back()->setFocusSolid(settings_.covers.empty());
   }
   structures(false);
   for (int f = 0; f < 6; ++f)

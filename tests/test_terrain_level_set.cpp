@@ -343,3 +343,54 @@ bounds = [2600900, 1200100, 2601300, 1200300]
   EXPECT_DOUBLE_EQ(a.settings.origin.x(), 2600000);
   EXPECT_DOUBLE_EQ(a.settings.origin.y(), 1200000);
 }
+
+// A run keeps the terrain's level set only around its active blocks (Sdf::focus, from the
+// terrain collider's cache), unless an erodible bed is there to project its pools onto the
+// ground wherever they lie (ErodibleBed::release): then the level set stays whole.
+TEST(TerrainLevelSet, ARunKeepsTheTerrainAroundItsBlocksUnlessAnErodibleBedReadsItAnywhere) {
+  test::useTestTerrainCache();
+  const std::string scene = R"([simulation]
+dx = 5
+end_time = 1
+[terrain]
+synthetic = { kind = "slope_valley", cell_size = 10 }
+boundary = "slip"
+[[materials]]
+name = "snow"
+model = "elastic"
+density = 300
+youngs_modulus = 1e6
+[[materials]]
+name = "cover"
+model = "elastic"
+density = 100
+youngs_modulus = 1e6
+[[bodies]]
+kind = "layer"
+material = "snow"
+thickness = 20
+bounds = [2600900, 1200100, 2601200, 1200300]
+)";
+  const std::string cover = "\n[[bodies]]\nkind = \"layer\"\nmaterial = \"cover\"\nthickness = 1\n"
+                            "erosion_energy = 200\nbounds = [2601250, 1200100, 2601380, 1200300]\n";
+  // Whether the terrain still answers far from the release after a step.
+  auto answersFarAway = [](const std::string& text) {
+    SceneSetup s = loadSceneString(text, "focus.toml");
+    const std::shared_ptr<const Sdf> terrain = s.settings.terrain;
+    Vec3d lo, hi;
+    terrain->bounds(lo, hi);
+    Simulation sim(s.settings, std::move(s.groups));
+    EXPECT_GT(sim.particleCount(), 0u);
+    sim.step();
+    try {
+      terrain->distance(Vec3d(lo.x() + 5, hi.y() - 5, 0.5 * (lo.z() + hi.z())));
+      return true;
+    } catch (const std::logic_error&) {
+      return false;
+    }
+  };
+  EXPECT_FALSE(answersFarAway(scene)) << "the run kept the whole terrain";
+  SceneSetup check = loadSceneString(scene + cover, "focus.toml");
+  ASSERT_FALSE(check.settings.covers.empty()) << "the cover was not made an erodible field";
+  EXPECT_TRUE(answersFarAway(scene + cover)) << "an erodible bed's terrain was cut to the blocks";
+}
