@@ -26,6 +26,27 @@ template <class NodeT> void dropOutside(openvdb::FloatTree& tree, const openvdb:
     if (!keep.hasOverlap(n->getNodeBoundingBox())) outside.push_back(n->origin());
   for (const openvdb::Coord& o : outside) delete tree.template stealNode<NodeT>(o, tree.background(), false);
 }
+
+/// The float grid `gridName` (the first float grid when empty) of `path`, its layout read and
+/// its values left in the file: the leaves keep the memory-mapped file open after close(), and
+/// each loads its values under its own lock the first time it is read, from any thread.
+/// Throws openvdb::Exception for a file OpenVDB cannot read, std::runtime_error for no such grid.
+openvdb::FloatGrid::Ptr readOnDemand(const std::string& path, const std::string& gridName) {
+  openvdb::io::File file(path);
+  file.open(/*delayLoad=*/true);
+  openvdb::FloatGrid::Ptr grid;
+  if (!gridName.empty()) {
+    if (!file.hasGrid(gridName)) throw std::runtime_error("no grid named '" + printable(gridName) + "'");
+    grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(gridName));
+  } else {
+    for (auto it = file.beginName(); it != file.endName() && !grid; ++it)
+      grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(*it));
+  }
+  file.close();
+  if (!grid)
+    throw std::runtime_error(gridName.empty() ? "no float grid found" : "grid '" + gridName + "' is not a float grid");
+  return grid;
+}
 } // namespace
 
 struct VdbLevelSet::Impl {
@@ -43,7 +64,7 @@ VdbLevelSet::VdbLevelSet(const std::string& path, const std::string& gridName, c
   checkVdbFile(path);
   try {
     if (loading == VdbLoading::Whole) readWhole(gridName);
-    else readOnDemand(gridName);
+    else impl_->grid = readOnDemand(path_, gridName);
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error("OpenVDB cannot read it: " + printable(e.what(), 200));
   } catch (const std::ios_base::failure&) {
@@ -75,15 +96,11 @@ void VdbLevelSet::focus(const BlockCoord& lo, const BlockCoord& hi, double dx) c
   // leaves, more than it frees.
   openvdb::FloatGrid::Ptr g;
   try {
-    openvdb::io::File file(path_);
-    file.open(/*delayLoad=*/true);
-    g = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(m.name));
-    file.close();
-  } catch (const openvdb::Exception& e) {
+    g = readOnDemand(path_, m.name);
+  } catch (const std::exception& e) {
     throw std::runtime_error(path_ + ": the level set cannot be read again (the cache removed during the run?): " +
                              printable(e.what(), 200));
   }
-  if (!g) throw std::runtime_error(path_ + ": grid '" + m.name + "' cannot be read again");
   const Vec3d wl = origin_ + keepLo, wh = origin_ + keepHi;
   const openvdb::CoordBBox keep(openvdb::Coord::floor(g->worldToIndex(openvdb::Vec3d(wl.x(), wl.y(), wl.z()))),
                                 openvdb::Coord::ceil(g->worldToIndex(openvdb::Vec3d(wh.x(), wh.y(), wh.z()))));
@@ -116,25 +133,6 @@ void VdbLevelSet::readWhole(const std::string& gridName) {
     if (impl_->grid || !gridName.empty()) break;
   }
   if (!gridName.empty() && !named) throw std::runtime_error("no grid named '" + printable(gridName) + "'");
-  if (!impl_->grid)
-    throw std::runtime_error(gridName.empty() ? "no float grid found" : "grid '" + gridName + "' is not a float grid");
-}
-
-void VdbLevelSet::readOnDemand(const std::string& gridName) {
-  // The leaves keep the memory-mapped file open after close(); each loads its values under its
-  // own lock the first time it is read, from any thread.
-  openvdb::io::File file(path_);
-  file.open(/*delayLoad=*/true);
-  openvdb::GridBase::Ptr g;
-  if (!gridName.empty()) {
-    if (!file.hasGrid(gridName)) throw std::runtime_error("no grid named '" + printable(gridName) + "'");
-    g = file.readGrid(gridName);
-  } else {
-    for (auto it = file.beginName(); it != file.endName() && !impl_->grid; ++it)
-      impl_->grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(*it));
-  }
-  file.close();
-  if (g) impl_->grid = openvdb::gridPtrCast<openvdb::FloatGrid>(g);
   if (!impl_->grid)
     throw std::runtime_error(gridName.empty() ? "no float grid found" : "grid '" + gridName + "' is not a float grid");
 }

@@ -55,7 +55,6 @@ public:
 
 private:
   void readWhole(const std::string& gridName);
-  void readOnDemand(const std::string& gridName);
   void check(bool values) const;
   void requireHeld(const Vec3d& lo, const Vec3d& hi) const;
   struct Impl;
