@@ -6,6 +6,7 @@
 #include "io/output/hazard_maps.h"
 #include "io/run/run_driver.h"
 #include "test_support.h"
+#include "two_slabs.h"
 
 #include <array>
 #include <cairo.h>
@@ -104,46 +105,12 @@ void expectPng(const std::string& path) {
   cairo_surface_destroy(img);
 }
 
-// A snow slab 0.4 m thick sliding at 2 m/s (no gravity, so it translates rigidly) beside a rock
-// slab at rest, at national grid coordinates; a DEM of 0.2 m cells rising 0.5 m per m eastwards.
-const char* kSlabs = R"([simulation]
-dx = 0.1
-end_time = 0.5
-gravity = [0, 0, 0]
-[domain]
-min = [2600000, 1200000, 1000]
-max = [2600004, 1200003, 1002]
-[[materials]]
-name = "snow"
-model = "elastic"
-density = 300
-youngs_modulus = 1e4
-[[materials]]
-name = "rock"
-model = "elastic"
-density = 2500
-youngs_modulus = 1e5
-[[bodies]]
-material = "snow"
-shape = "box"
-min = [2600000.4, 1200000.4, 1000.2]
-max = [2600002.4, 1200001.2, 1000.6]
-velocity = [2, 0, 0]
-[[bodies]]
-material = "rock"
-shape = "box"
-min = [2600003.0, 1200001.8, 1000.2]
-max = [2600003.6, 1200002.6, 1000.6]
-[output.maps]
-per_material = true
-erodible = ["snow"]
-)";
 
 } // namespace
 
 TEST(OutputMaps, GeoTiffsOnTheDemGridReadByGdalinfoMatchASlidingSlab) {
   const std::string dir = test::tempDir("maps_dem");
-  SceneSetup scene = loadSceneString(kSlabs, "test.toml");
+  SceneSetup scene = loadSceneString(test::kSlabs, "test.toml");
   auto dem = std::make_shared<DemRaster>();
   dem->grid.nx = 40, dem->grid.ny = 30, dem->grid.cellSize = 0.2;
   dem->grid.originX = 2599998.0, dem->grid.originY = 1200004.0; // larger than the domain
@@ -273,15 +240,9 @@ TEST(OutputMaps, MinSpeedLeavesRestingMaterialOutOfTheFlowMaps) {
 
 TEST(OutputMaps, AccumulationIsBitIdenticalAtOneAndTwoThreads) {
   // Maps are summed in parallel; like the engine, they must not depend on the thread count.
-  auto sim = test::makeSimulation(kSlabs, {"simulation.gravity=[0,0,-9.81]"});
-  MapSettings ms;
-  ms.enabled = true;
-  ms.perMaterial = true;
-  RunContext run;
-  run.origin = sim->settings().origin;
-  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
-  const RasterGrid grid = HazardMaps::domainGrid(run, 0.15);
-  HazardMaps one(test::tempDir("maps_threads"), grid, nullptr, ms), two(test::tempDir("maps_threads"), grid, nullptr, ms);
+  auto sim = test::makeSimulation(test::kSlabs, {"simulation.gravity=[0,0,-9.81]"});
+  const auto maps1 = test::slabMaps(*sim, test::tempDir("maps_threads")), maps2 = test::slabMaps(*sim, test::tempDir("maps_threads"));
+  HazardMaps &one = *maps1, &two = *maps2;
   auto with = [](int threads, auto&& f) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     f();
@@ -309,13 +270,13 @@ TEST(OutputMaps, ACoverThatOnlyCreptReadsNoErosionAndAStripTakenReadsItsDepth) {
   // it out; a strip taken away keeps its full depth. Here: a 0.4 m snow slab of kSlabs (no
   // gravity, nothing steps), its particles displaced along x by A sin(2 pi x / L) with A k = 1 %
   // (a 1 % strain, as the creep), and the particles of 1.2 < x < 1.8 m (local) given no mass.
-  const auto sim = test::makeSimulation(kSlabs);
+  const auto sim = test::makeSimulation(test::kSlabs);
   RunContext run;
   run.origin = sim->settings().origin;
   run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
   const RasterGrid grid = HazardMaps::domainGrid(run, 0.2);
   auto erosionAfter = [&](double fraction, bool strip) {
-    auto s = test::makeSimulation(kSlabs);
+    auto s = test::makeSimulation(test::kSlabs);
     MapSettings ms;
     ms.enabled = true;
     ms.quicklook = false;

@@ -27,17 +27,39 @@ void AvaFrameRunFiles::onStart(const Simulation& sim) {
   onStep(sim, 0); // the row at t = 0: the released mass (AIMEC's relMass)
 }
 
-void AvaFrameRunFiles::onStep(const Simulation& sim, double) {
-  // Rows on com1DFA's 0.1 s clock, each the state after the step that reaches it.
-  while (sim.time() + 1e-9 >= double(next_) * kInterval) sample(sim, double(next_++) * kInterval);
+void AvaFrameRunFiles::onStep(const Simulation& sim, double dt) {
+  if (!partDue(sim)) return;
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, true, own);
+  onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
 }
 
-void AvaFrameRunFiles::sample(const Simulation& sim, double t) {
-  double current = 0, entrained = 0;
-  for (const auto& g : sim.groups()) {
-    if (std::find(erodible_.begin(), erodible_.end(), g->name()) != erodible_.end()) continue; // covers: below
-    for (Real m : g->particles.mass) current += double(m);
+bool AvaFrameRunFiles::partDue(const Simulation& sim) const { return sim.time() + 1e-9 >= double(next_) * kInterval; }
+
+void AvaFrameRunFiles::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
+  // The particles' mass but the covers' (below), in fixed point: exact in any order.
+  const double perUnit = powerOfTwo(-unitExponent(b.maxMass, 62));
+  __int128 units = 0;
+  for (const auto& g : local.groups()) {
+    if (std::find(erodible_.begin(), erodible_.end(), g->name()) != erodible_.end()) continue;
+    for (Real m : g->particles.mass) units += toUnits(double(m), perUnit);
   }
+  PartWriter(out).put(units);
+}
+
+void AvaFrameRunFiles::onStepParts(const Simulation& sim, double, const PartBounds& b,
+                                   const std::vector<std::string_view>& parts) {
+  if (parts.empty()) return;
+  __int128 units = 0;
+  for (const auto& p : parts) units += PartReader(p).get<__int128>();
+  const double mass = double(units) * powerOfTwo(unitExponent(b.maxMass, 62));
+  // Rows on com1DFA's 0.1 s clock, each the state after the step that reaches it.
+  while (partDue(sim)) sample(sim, double(next_++) * kInterval, mass);
+}
+
+void AvaFrameRunFiles::sample(const Simulation& sim, double t, double particleMass) {
+  double current = particleMass, entrained = 0;
   std::vector<double> covers;
   entrained_.sample(sim, 0, covers);
   for (double m : covers) entrained += m, current += m; // what a cover lost is in the flow

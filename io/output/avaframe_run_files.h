@@ -30,6 +30,14 @@ public:
   std::string name() const override { return "avaframe_run_files"; }
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
+  bool readsEveryStep() const override { return true; }
+  /// In parts (the particles' mass, io/output/step_parts.h) unless a cover is erodible: its
+  /// entrained mass reads every particle.
+  bool stepsInParts() const override { return erodible_.empty(); }
+  bool partDue(const Simulation& sim) const override;
+  void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
+  void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                   const std::vector<std::string_view>& parts) override;
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;
@@ -38,7 +46,7 @@ public:
   static constexpr double kInterval = 0.1;
 
 private:
-  void sample(const Simulation& sim, double t);
+  void sample(const Simulation& sim, double t, double particleMass);
   std::string configuration() const;
 
   std::string outDir_, simName_, simType_, sceneKeys_;

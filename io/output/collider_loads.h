@@ -18,6 +18,7 @@ public:
   void onStart(const Simulation& sim) override;
   std::vector<std::string> header() const override;
   void onStep(const Simulation& sim, double dt) override;
+  Reads reads() const override { return Reads::None; } // rank 0's reduced loads
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;

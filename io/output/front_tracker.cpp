@@ -25,26 +25,35 @@ std::vector<std::string> FrontTracker::header() const {
   return {"front_m_" + spec_.name, "front_speed_m_s_" + spec_.name};
 }
 
-double FrontTracker::front(const Simulation& sim) const {
-  const double L = length();
-  const int nbins = std::max(1, int(std::ceil(L / bin_)));
+int FrontTracker::binsAlong() const { return std::max(1, int(std::ceil(length() / bin_))); }
+
+int FrontTracker::volumeUnit(const Simulation& sim, const PartBounds& b) {
+  double invRho = 0;
+  for (const auto* g : sim.groups()) invRho = std::max(invRho, 1.0 / g->density());
+  return unitExponent(b.maxMass * invRho, 40); // 2^23 of the largest particles fit a bin's int64
+}
+
+void FrontTracker::part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {
+  const int nbins = binsAlong();
   const int half = lanes_ / 2;
   const double reach = (half + 0.5) * bin_; // lateral extent of the corridor
-  std::vector<double> vol(size_t(nbins) * size_t(lanes_), 0.0);
+  const double perUnit = powerOfTwo(-volumeUnit(local, b));
   Eigen::Vector2d lo = path_.points()[0], hi = lo;
   for (const auto& p : path_.points()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   lo.array() -= reach, hi.array() += reach;
   const float minSpeed2 = float(spec_.minSpeed * spec_.minSpeed);
-  for (const MaterialGroup* g : sim.groups()) {
+  using Bins = std::vector<int64_t>;
+  Bins vol(size_t(nbins) * size_t(lanes_), 0);
+  for (const MaterialGroup* g : local.groups()) {
     if (!spec_.materials.empty() &&
         std::find(spec_.materials.begin(), spec_.materials.end(), g->name()) == spec_.materials.end())
       continue;
     const ParticleSet& P = g->particles;
     const double invRho = 1.0 / g->density();
-    // Chunks bin in parallel into their own arrays, summed in a fixed tree: the same front at
-    // any thread count.
-    auto binRange = [&](const tbb::blocked_range<size_t>& range, std::vector<double> acc) {
-      if (acc.empty()) acc.assign(vol.size(), 0.0);
+    // Chunks bin in parallel into their own arrays of fixed-point volumes: integer sums, the same
+    // at any thread and rank count.
+    auto binRange = [&](const tbb::blocked_range<size_t>& range, Bins acc) {
+      if (acc.empty()) acc.assign(vol.size(), 0);
       for (size_t p = range.begin(); p != range.end(); ++p) {
         const Eigen::Vector2d x(P.x[p][0], P.x[p][1]);
         if (x.x() < lo.x() || x.y() < lo.y() || x.x() > hi.x() || x.y() > hi.y()) continue;
@@ -57,34 +66,44 @@ double FrontTracker::front(const Simulation& sim) const {
         const int b0 = int(std::floor(fs));
         const double w1 = fs - b0;
         const double v = double(P.mass[p]) * invRho;
-        double* lb = acc.data() + size_t(lane) * nbins;
-        if (b0 >= 0 && b0 < nbins) lb[b0] += (1 - w1) * v;
-        if (b0 + 1 >= 0 && b0 + 1 < nbins) lb[b0 + 1] += w1 * v;
+        const int64_t v0 = toUnits((1 - w1) * v, perUnit), v1 = toUnits(w1 * v, perUnit);
+        int64_t* lb = acc.data() + size_t(lane) * nbins;
         // The outer half-bins at both ends fold into the end bins: no volume is lost.
-        if (b0 < 0) lb[0] += (1 - w1) * v;
-        if (b0 + 1 >= nbins) lb[nbins - 1] += w1 * v;
+        lb[std::clamp(b0, 0, nbins - 1)] += v0;
+        lb[std::clamp(b0 + 1, 0, nbins - 1)] += v1;
       }
       return acc;
     };
-    const std::vector<double> groupVol = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, P.size(), 16384), std::vector<double>(), binRange,
-        [](std::vector<double> a, const std::vector<double>& b) {
-          if (a.empty()) return b;
-          for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
+    const Bins groupVol = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, P.size(), 16384), Bins(), binRange, [](Bins a, const Bins& c) {
+          if (a.empty()) return c;
+          for (size_t i = 0; i < c.size(); ++i) a[i] += c[i];
           return a;
         });
     for (size_t i = 0; i < groupVol.size(); ++i) vol[i] += groupVol[i];
   }
-  const double invArea = 1.0 / (bin_ * bin_);
+  PartWriter put(out);
+  for (int64_t v : vol) put.put(v);
+}
+
+double FrontTracker::frontOf(const Simulation& sim, const PartBounds& b, const std::vector<std::string_view>& parts) const {
+  const double L = length();
+  const int nbins = binsAlong();
+  std::vector<int64_t> sum(size_t(nbins) * size_t(lanes_), 0);
+  for (const auto& p : parts) {
+    PartReader get(p);
+    for (int64_t& v : sum) v += get.get<int64_t>();
+  }
+  const double invArea = powerOfTwo(volumeUnit(sim, b)) / (bin_ * bin_);
   double frontPos = std::numeric_limits<double>::quiet_NaN();
   for (int lane = 0; lane < lanes_; ++lane) {
-    const double* t = vol.data() + size_t(lane) * nbins;
-    for (int b = nbins - 1; b >= 0; --b) {
-      const double tb = t[b] * invArea;
+    const int64_t* t = sum.data() + size_t(lane) * nbins;
+    for (int k = nbins - 1; k >= 0; --k) {
+      const double tb = double(t[k]) * invArea;
       if (tb < threshold_) continue;
       // Where the profile between this bin's centre and the next drops below the threshold.
-      const double next = b + 1 < nbins ? t[b + 1] * invArea : 0.0;
-      const double pos = std::min(L, (b + 0.5) * bin_ + bin_ * (tb - threshold_) / (tb - next));
+      const double next = k + 1 < nbins ? double(t[k + 1]) * invArea : 0.0;
+      const double pos = std::min(L, (k + 0.5) * bin_ + bin_ * (tb - threshold_) / (tb - next));
       if (!(pos <= frontPos)) frontPos = pos;
       break;
     }
@@ -92,12 +111,27 @@ double FrontTracker::front(const Simulation& sim) const {
   return frontPos;
 }
 
-void FrontTracker::sample(const Simulation& sim, double elapsed, std::vector<double>& row) {
-  const double f = front(sim);
+double FrontTracker::front(const Simulation& sim) const {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, own);
+  return frontOf(sim, b, {std::string_view(own.data(), own.size())});
+}
+
+void FrontTracker::sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
+                               const std::vector<std::string_view>& parts, std::vector<double>& row) {
+  const double f = frontOf(sim, b, parts);
   row.push_back(f);
   row.push_back(elapsed > 0 && std::isfinite(f) && std::isfinite(previous_) ? (f - previous_) / elapsed
                                                                              : std::numeric_limits<double>::quiet_NaN());
   previous_ = f;
+}
+
+void FrontTracker::sample(const Simulation& sim, double elapsed, std::vector<double>& row) {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, own);
+  sampleParts(sim, elapsed, b, {std::string_view(own.data(), own.size())}, row);
 }
 
 } // namespace talus

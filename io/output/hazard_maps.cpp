@@ -1,11 +1,13 @@
-// HazardMaps' accumulation: splats of particle volume, mass and speed onto map cells, summed
-// in bands of rows (bit-identical at any thread count) and folded into the maxima.
+// HazardMaps' accumulation: splats of particle volume, mass and speed onto map cells, summed as
+// fixed-point integers in bands of rows (exact: the same at any thread and rank count), merged
+// over the processes' parts (io/output/step_parts.h) and folded into the maxima.
 #include "io/output/hazard_maps_impl.h"
 
 #include "io/output/animation.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <tbb/blocked_range.h>
@@ -54,7 +56,7 @@ void HazardMaps::load(const StateArchive& a, const std::string& prefix) {
   m.animationNext = a.getValue<int32_t>(prefix + "animation_next");
 }
 
-void HazardMaps::onStart(const Simulation& sim) {
+void HazardMaps::prepareParts(const Simulation& sim) {
   Impl& m = *impl_;
   const auto& st = sim.settings();
   m.origin = st.origin;
@@ -77,9 +79,16 @@ void HazardMaps::onStart(const Simulation& sim) {
   m.layerMaterial.assign(1, "");
   if (settings_.perMaterial)
     for (const auto* g : groups) m.layerMaterial.push_back(g->name());
-  m.maxima.assign(size_t(m.layers), std::vector<float>(kMaxima * m.cells, 0.f));
-  m.sums.assign(size_t(m.layers), std::vector<float>(kSums * m.cells, 0.f));
+  m.sums.assign(size_t(m.layers), std::vector<int64_t>(kSums * m.cells, 0));
   m.mark.assign(m.cells, 0);
+}
+
+void HazardMaps::onStart(const Simulation& sim) {
+  prepareParts(sim);
+  Impl& m = *impl_;
+  const auto& groups = sim.groups();
+  const double cs = grid_.cellSize;
+  m.maxima.assign(size_t(m.layers), std::vector<float>(kMaxima * m.cells, 0.f));
   m.cosSlope.assign(m.cells, kNaN);
 
   if (dem_) {
@@ -111,17 +120,28 @@ void HazardMaps::onStart(const Simulation& sim) {
       if (groups[g]->name() == n) m.erodibleGroup[g] = 1;
   if (!settings_.erodible.empty()) m.thickness(sim, m.erodibleGroup, m.initial);
   m.thickness(sim, std::vector<uint8_t>(groups.size(), 1), m.start);
-  accumulate(sim);
+  accumulate(sim, 0);
 }
 
-void HazardMaps::onStep(const Simulation& sim, double) {
-  if (sim.time() - impl_->lastTime + 1e-12 < settings_.interval && !animationFrameDue(sim.time())) return;
-  accumulate(sim);
+void HazardMaps::onStep(const Simulation& sim, double dt) {
+  if (!partDue(sim)) return;
+  accumulate(sim, dt);
+}
+
+bool HazardMaps::partDue(const Simulation& sim) const {
+  return sim.time() - impl_->lastTime + 1e-12 >= settings_.interval || animationFrameDue(sim.time());
 }
 
 bool HazardMaps::animationFrameDue(double time) const {
   const AnimationSettings& a = settings_.animation;
   return a.enabled && time + 1e-9 * a.interval >= impl_->animationNext * a.interval;
+}
+
+void HazardMaps::Impl::setUnits(const Simulation& sim, const PartBounds& b) {
+  double invRho = 0;
+  for (const auto* g : sim.groups()) invRho = std::max(invRho, 1.0 / g->density());
+  const double bound[kSums] = {b.maxMass * invRho, b.maxMass, b.maxMass * std::sqrt(b.maxSpeed2), b.maxMass * b.maxSpeed2};
+  for (int k = 0; k < kSums; ++k) unit[k] = unitExponent(bound[k], kUnitBits);
 }
 
 void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed) {
@@ -132,6 +152,8 @@ void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_
   m.rowStart.resize(groups.size());
   m.splats.resize(groups.size());
   auto& row = m.rowOf;
+  float perUnit[kSums];
+  for (int k = 0; k < kSums; ++k) perUnit[k] = float(powerOfTwo(-m.unit[k]));
   for (size_t g = 0; g < groups.size(); ++g) {
     if (!use[g]) continue;
     const ParticleSet& P = groups[g]->particles;
@@ -177,27 +199,29 @@ void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_
         sp.tx = fx - float(sp.col);
         sp.ty = fy - float(row[p] - 1);
         const float mass = P.mass[p], v2 = P.v[p].squaredNorm();
-        sp.q[0] = mass * invRho, sp.q[1] = mass, sp.q[2] = mass * std::sqrt(v2), sp.q[3] = mass * v2;
+        const float q[kSums] = {mass * invRho, mass, mass * std::sqrt(v2), mass * v2};
+        for (int k = 0; k < kSums; ++k) sp.q[k] = q[k] * perUnit[k]; // a power of two: exact
       }
     });
   }
 }
 
-template <class Fold>
-void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold) {
+void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t>& use) {
   Impl& m = *this;
   const auto& groups = sim.groups();
   const int w = m.window.nx, h = m.window.ny;
   constexpr int kBand = 8;
   const int bands = (h + kBand - 1) / kBand;
+  m.bandTouched.resize(size_t(bands));
   tbb::parallel_for(0, bands, [&](int band) {
     const int r0 = band * kBand, r1 = std::min(h, r0 + kBand);
-    std::vector<uint32_t> touched;
+    std::vector<uint32_t>& touched = m.bandTouched[size_t(band)];
+    touched.clear();
     uint8_t* mark = m.mark.data();
     for (size_t g = 0; g < groups.size(); ++g) {
       if (!use[g]) continue;
-      float* __restrict all = m.sums[0].data();
-      float* __restrict mat = m.layers > 1 ? m.sums[1 + g].data() : nullptr;
+      // Per material when there are materials' layers (the total is their sum, at the fold).
+      int64_t* __restrict s0 = m.sums[m.layers > 1 ? 1 + g : 0].data();
       const Splat* splats = m.splats[g].data();
       const uint32_t* start = m.rowStart[g].data();
       // Splats starting in row r0 - 1 reach row r0; those starting in row r1 - 1 end in r1.
@@ -213,62 +237,128 @@ void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t
               const float wt = wy[dr] * wx[dc];
               if (cc < 0 || cc >= w || !(wt > 0)) continue;
               const uint32_t cell = uint32_t(size_t(r + dr) * w + cc);
-              float* s = all + kSums * cell;
-              s[0] += wt * sp.q[0], s[1] += wt * sp.q[1], s[2] += wt * sp.q[2], s[3] += wt * sp.q[3];
-              if (mat) {
-                float* sm = mat + kSums * cell;
-                sm[0] += wt * sp.q[0], sm[1] += wt * sp.q[1], sm[2] += wt * sp.q[2], sm[3] += wt * sp.q[3];
-              }
+              // A float times a float is exact in double: only the fraction of a unit is lost.
+              int64_t* s = s0 + kSums * cell;
+              for (int q = 0; q < kSums; ++q) s[q] += toUnits(double(wt), double(sp.q[q]));
               if (!mark[cell]) mark[cell] = 1, touched.push_back(cell);
             }
         }
       }
     }
-    // Fold this band's cells and clear only the cells touched.
-    for (uint32_t cell : touched) {
-      fold(cell);
-      for (int l = 0; l < m.layers; ++l) std::fill_n(m.sums[size_t(l)].data() + kSums * cell, kSums, 0.f);
-      m.mark[cell] = 0;
+  });
+  for (const auto& t : m.bandTouched) m.touched.insert(m.touched.end(), t.begin(), t.end());
+}
+
+// A part: the touched cells' indices, then each cell's kSums * layers sums, cell by cell.
+void HazardMaps::Impl::writeTouched(std::vector<char>& out) {
+  const size_t n = touched.size(), row = sizeof(int64_t) * kSums, at0 = out.size();
+  out.resize(at0 + n * (sizeof(uint32_t) + row * size_t(layers - firstLayer())));
+  std::memcpy(out.data() + at0, touched.data(), n * sizeof(uint32_t));
+  char* at = out.data() + at0 + n * sizeof(uint32_t);
+  for (uint32_t cell : touched) {
+    for (int l = firstLayer(); l < layers; ++l, at += row) {
+      int64_t* s = sums[size_t(l)].data() + kSums * cell;
+      std::memcpy(at, s, row);
+      std::fill_n(s, kSums, 0);
+    }
+    mark[cell] = 0;
+  }
+  touched.clear();
+}
+
+void HazardMaps::Impl::addPart(std::string_view part) {
+  const size_t row = sizeof(int64_t) * kSums, record = sizeof(uint32_t) + row * size_t(layers - firstLayer());
+  if (part.size() % record) throw std::runtime_error("hazard maps: a part does not hold whole cells");
+  const size_t n = part.size() / record;
+  const char* at = part.data() + n * sizeof(uint32_t);
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t cell;
+    std::memcpy(&cell, part.data() + i * sizeof(uint32_t), sizeof cell);
+    if (cell >= cells) throw std::runtime_error("hazard maps: a part names a cell outside the map");
+    for (int l = firstLayer(); l < layers; ++l, at += row) {
+      int64_t v[kSums], *s = sums[size_t(l)].data() + kSums * cell;
+      std::memcpy(v, at, row);
+      for (int k = 0; k < kSums; ++k) s[k] += v[k];
+    }
+    if (!mark[cell]) mark[cell] = 1, touched.push_back(cell);
+  }
+}
+
+template <class Fold> void HazardMaps::Impl::foldTouched(Fold&& fold) {
+  double scale[kSums];
+  for (int k = 0; k < kSums; ++k) scale[k] = powerOfTwo(unit[k]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, touched.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<float> s(size_t(kSums * layers));
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const uint32_t cell = touched[i];
+      int64_t* total = sums[0].data() + kSums * cell;
+      for (int l = 1; l < layers; ++l) // the materials' integer sums add up to the total exactly
+        for (int k = 0; k < kSums; ++k) total[k] += sums[size_t(l)][kSums * cell + k];
+      for (int l = 0; l < layers; ++l) {
+        int64_t* n = sums[size_t(l)].data() + kSums * cell;
+        for (int k = 0; k < kSums; ++k) s[size_t(l * kSums + k)] = float(double(n[k]) * scale[k]), n[k] = 0;
+      }
+      mark[cell] = 0;
+      fold(cell, s.data());
     }
   });
+  touched.clear();
 }
 
 void HazardMaps::Impl::thickness(const Simulation& sim, const std::vector<uint8_t>& use,
                                  std::vector<std::vector<float>>& out) {
   out.assign(size_t(layers), std::vector<float>(cells, 0.f));
   const float invArea = float(1.0 / (window.cellSize * window.cellSize));
+  setUnits(sim, PartBounds::of(sim)); // one process: it holds every particle here (the start)
   binSplats(sim, use);
-  sumBands(sim, use, [&](uint32_t cell) {
-    for (int l = 0; l < layers; ++l) out[size_t(l)][cell] = sums[size_t(l)][kSums * cell] * invArea;
+  sumBands(sim, use);
+  foldTouched([&](uint32_t cell, const float* s) {
+    for (int l = 0; l < layers; ++l) out[size_t(l)][cell] = s[l * kSums] * invArea;
   });
 }
 
-void HazardMaps::accumulate(const Simulation& sim) {
-  // Parallel over bands of map rows. Every particle is listed under the row its splat starts in
-  // (counting sort), and a band sums the lists of its rows in a fixed order, then folds its own
-  // cells into the maxima: no two tasks write one cell, and every cell's sum has the same order
-  // whatever the thread count, so maps are bit-identical at any number of threads.
+void HazardMaps::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
   Impl& m = *impl_;
+  const std::vector<uint8_t> all(local.groups().size(), 1);
+  m.setUnits(local, b);
+  m.binSplats(local, all, float(settings_.minSpeed)); // moving material only, when min_speed is set
+  m.sumBands(local, all);
+  if (!keep) m.writeTouched(out); // else the sums stay, and onStepParts adds the others to them
+}
+
+void HazardMaps::accumulate(const Simulation& sim, double dt) {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, true, own);
+  onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
+}
+
+void HazardMaps::onStepParts(const Simulation& sim, double, const PartBounds& b,
+                             const std::vector<std::string_view>& parts) {
+  // Every part's cells are summed as integers, so each cell's sum is the same whatever the split
+  // of the particles into parts (ranks) and bands (threads): maps are bit-identical at any
+  // number of either. Each cell is then folded into the maxima on its own, in parallel.
+  if (parts.empty()) return;
+  Impl& m = *impl_;
+  m.setUnits(sim, b);
+  for (const auto& p : parts) m.addPart(p);
   m.lastTime = sim.time();
   m.endTime = sim.time();
   ++accumulations_;
-  const std::vector<uint8_t> all(sim.groups().size(), 1);
-  m.binSplats(sim, all, float(settings_.minSpeed)); // moving material only, when min_speed is set
   const float invArea = float(1.0 / (m.window.cellSize * m.window.cellSize));
   const float minH = float(settings_.minHeight);
   const size_t n = m.cells;
   // An animation frame records this accumulation's thickness and speed of all material.
   const bool frame = animationFrameDue(sim.time());
   if (frame) m.frameThickness.assign(n, 0.f), m.frameSpeed.assign(n, 0.f);
-  m.sumBands(sim, all, [&](uint32_t cell) {
+  m.foldTouched([&](uint32_t cell, const float* all) {
     if (frame) {
-      const float* s = m.sums[0].data() + kSums * cell;
-      m.frameThickness[cell] = s[0] * invArea;
-      if (s[0] * invArea >= minH && s[1] > 0) m.frameSpeed[cell] = s[2] / s[1];
+      m.frameThickness[cell] = all[0] * invArea;
+      if (all[0] * invArea >= minH && all[1] > 0) m.frameSpeed[cell] = all[2] / all[1];
     }
     const float cosS = m.cosAt(cell);
     for (int l = 0; l < m.layers; ++l) {
-      const float* s = m.sums[size_t(l)].data() + kSums * cell;
+      const float* s = all + l * kSums;
       if (!(s[0] > 0)) continue;
       float* mx = m.maxima[size_t(l)].data();
       const float hv = s[0] * invArea;

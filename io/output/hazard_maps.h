@@ -11,6 +11,9 @@
 //   slope-normal height       = h cos(slope)
 //   speed                     = sum m |v| / sum m   (mass-weighted mean)
 //   dynamic pressure          = sum m |v|^2 / sum V (= rho v^2 for one material), in kPa
+// The sums are fixed-point integers (units below 2^-40 of the largest particle's value), so they
+// are exact in any order: under ranks each process sums its own particles into a part and rank 0
+// adds the parts (stepsInParts), with the bytes of one process.
 #pragma once
 
 #include "io/output/output_settings.h"
@@ -44,6 +47,13 @@ public:
   std::string name() const override { return "hazard_maps"; }
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
+  bool readsEveryStep() const override { return true; }
+  bool stepsInParts() const override { return true; }
+  void prepareParts(const Simulation& sim) override;
+  bool partDue(const Simulation& sim) const override;
+  void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
+  void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                   const std::vector<std::string_view>& parts) override;
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;
@@ -65,7 +75,8 @@ public:
   std::vector<std::pair<std::string, std::string>> summary() const override;
 
 private:
-  void accumulate(const Simulation& sim);
+  /// One accumulation from this process's particles alone (its own part).
+  void accumulate(const Simulation& sim, double dt);
   bool animationFrameDue(double time) const;
   void makeFilm();
   std::string animationOutcome_;

@@ -14,7 +14,10 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
 constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
 
-/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities.
+constexpr int kUnitBits = 40; // a particle's largest value in units (io/output/step_parts.h)
+
+/// One particle's bilinear splat: first column, offsets in cells, and the summed quantities in
+/// units of 2^unit[k] (exactly scaled floats; each cell sums them as rounded integers).
 struct Splat {
   int32_t col;
   float tx, ty;
@@ -28,7 +31,12 @@ struct HazardMaps::Impl {
   int layers = 1; ///< 0 = all material, 1 + i = material group i
   std::vector<std::string> layerMaterial;
   std::vector<std::vector<float>> maxima;  ///< [layer][q * cells + cell]
-  std::vector<std::vector<float>> sums;    ///< [layer][kSums * cell + k]
+  std::vector<std::vector<int64_t>> sums;  ///< [layer][kSums * cell + k], in units of 2^unit[k];
+                                           ///< with materials' layers, layer 0 only at the fold
+  int firstLayer() const { return layers > 1 ? 1 : 0; } ///< the first layer summed and sent
+  int unit[kSums] = {0, 0, 0, 0};          ///< this accumulation's unit exponents (from PartBounds)
+  std::vector<uint32_t> touched;           ///< cells with sums, in band order
+  std::vector<std::vector<uint32_t>> bandTouched; ///< scratch: per band of rows
   std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
   std::vector<uint8_t> erodibleGroup;
   std::vector<float> cosSlope; ///< NaN until known
@@ -45,14 +53,25 @@ struct HazardMaps::Impl {
   Vec3d origin = Vec3d::Zero();
   double zLo = 0, zHi = 0, dx = 1;
 
+  /// The units of the next sums, from every process's maxima.
+  void setUnits(const Simulation& sim, const PartBounds& b);
   /// The splats of the particles of the groups in `use`, sorted by the map row they start in
   /// (see accumulate). Stored in that order, not per particle: the sums then read them in
   /// sequence (a gather through a particle index missed the cache on most of them).
   /// Only particles at least `minSpeed` fast (m/s) are splatted when it is positive.
   void binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed = 0);
-  /// Sums the binned splats into `sums`, bands of rows in parallel, every cell in a fixed order,
-  /// then calls fold(cell) for each cell touched and clears its sums.
-  template <class Fold> void sumBands(const Simulation& sim, const std::vector<uint8_t>& use, Fold&& fold);
+  /// Adds the binned splats into `sums` (bands of rows in parallel; integer sums, so exact in
+  /// any order) and lists the cells touched in `touched`.
+  void sumBands(const Simulation& sim, const std::vector<uint8_t>& use);
+  /// The touched cells' sums as a part (their indices, then kSums * layers integers each);
+  /// clears them.
+  void writeTouched(std::vector<char>& out);
+  /// Adds a part's cells into `sums` and `touched`.
+  /// @throw std::runtime_error if the part does not hold whole cells of this map
+  void addPart(std::string_view part);
+  /// Calls fold(cell, s) for every touched cell, in parallel, with s[l * kSums + k] its
+  /// quantity k of layer l as a float; then clears the sums.
+  template <class Fold> void foldTouched(Fold&& fold);
 
   /// Volume thickness (m) per cell of the groups selected by `use`, into layer 0 and per material.
   void thickness(const Simulation& sim, const std::vector<uint8_t>& use, std::vector<std::vector<float>>& out);

@@ -5,6 +5,7 @@
 
 #include "engine/simulation.h"
 #include "engine/state_archive.h"
+#include "io/output/step_parts.h"
 
 #include <string>
 #include <vector>
@@ -27,6 +28,27 @@ public:
   /// After the last step. `completed` is false when the run stopped on a numerical failure:
   /// particle state may then be non-finite, so "final state" outputs should be skipped.
   virtual void onFinish(const Simulation& sim, bool completed) {}
+
+  /// Whether onStep reads the particles (under ranks, on rank 0's gathered copy unless the
+  /// output steps in parts). Frame formats read them at frames only.
+  virtual bool readsEveryStep() const { return false; }
+  /// Steps in parts (io/output/step_parts.h). An output whose per-step work needs only exact
+  /// reductions over the particles returns true; the driver then, after every step, asks rank 0
+  /// partDue(), calls part() on every process with its own particles when due, and calls
+  /// onStepParts() on rank 0 with every part (none when not due) instead of onStep(). Without
+  /// ranks the same calls run with one part, so one process writes the same bytes.
+  virtual bool stepsInParts() const { return false; }
+  /// Before the run on processes other than rank 0: what part() needs (the scene, not particles).
+  virtual void prepareParts(const Simulation& sim) {}
+  /// On rank 0, after a step: whether this step's parts are needed.
+  virtual bool partDue(const Simulation& sim) const { return false; }
+  /// This process's part from its own particles, appended to `out`; `b` holds every process's
+  /// maxima. `keep`: the part is rank 0's own (or one process's), merged next by this same
+  /// object, which may keep it in place and append nothing.
+  virtual void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {}
+  /// On rank 0: the step from every process's part (rank order; empty when not due).
+  virtual void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                           const std::vector<std::string_view>& parts) {}
 
   /// Checkpointing: the state accumulated since the start (maxima, rows, pending volumes), so a
   /// resumed run writes the same files as an uninterrupted one. On resume the driver calls

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 namespace talus {
 
@@ -39,9 +40,37 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
                                                            run.particleSpacing, o.maps.quicklook));
   }
   seconds_.assign(outputs_.size(), 0.0);
+  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
+}
+
+OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, const Simulation& sim) {
+  // In the root's order. The series', the maps' and the peak files' constructors touch no file
+  // (the frame formats' make folders).
+  if (o.series) outputs_.push_back(std::make_unique<TimeSeries>("", o, run.endTime, run.particleSpacing));
+  if (o.maps.enabled) {
+    const double cell = o.maps.cellSize > 0 ? o.maps.cellSize : 2 * run.dx;
+    RasterGrid grid = run.dem ? run.dem->grid : HazardMaps::domainGrid(run, cell);
+    outputs_.push_back(std::make_unique<HazardMaps>("", grid, run.dem, o.maps));
+    if (o.maps.peakFiles.enabled) outputs_.push_back(std::make_unique<AvaFrameRunFiles>("", o, run));
+  }
+  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
+  outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(), [](const auto& out) { return !out->stepsInParts(); }),
+                 outputs_.end());
+  for (auto& out : outputs_) out->prepareParts(sim);
+  seconds_.assign(outputs_.size(), 0.0);
+  root_ = false;
 }
 
 OutputSet::~OutputSet() = default;
+
+template <class F> void OutputSet::eachInParts(F&& f) {
+  for (size_t i = 0, k = 0; i < outputs_.size(); ++i) {
+    if (!outputs_[i]->stepsInParts()) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    f(*outputs_[i], k++);
+    seconds_[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+}
 
 template <class F> void OutputSet::each(F&& f) {
   for (size_t i = 0; i < outputs_.size(); ++i) {
@@ -57,9 +86,59 @@ void OutputSet::start(const Simulation& sim) {
 }
 
 void OutputSet::step(const Simulation& sim) {
+  // The same calls as under ranks, with this process's buffer the only one: the same bytes.
+  const double dt = stepTime(sim);
+  const uint32_t due = partsDue(sim);
+  const PartBounds b = due ? PartBounds::of(sim) : PartBounds{};
+  const std::vector<char> mine = parts(sim, due, b);
+  std::vector<std::string_view> buffers;
+  if (due) buffers.emplace_back(mine.data(), mine.size());
+  mergeParts(sim, dt, due, b, buffers);
+  stepWhole(sim, dt);
+}
+
+double OutputSet::stepTime(const Simulation& sim) {
   const double dt = sim.time() - lastTime_;
   lastTime_ = sim.time();
-  each([&](OutputObserver& o) { o.onStep(sim, dt); });
+  return dt;
+}
+
+uint32_t OutputSet::partsDue(const Simulation& sim) const {
+  uint32_t due = 0, bit = 1;
+  for (const auto& out : outputs_)
+    if (out->stepsInParts()) due |= out->partDue(sim) ? bit : 0, bit <<= 1;
+  return due;
+}
+
+std::vector<char> OutputSet::parts(const Simulation& local, uint32_t due, const PartBounds& b) {
+  std::vector<char> buffer;
+  eachInParts([&](OutputObserver& o, size_t k) {
+    if (!(due >> k & 1)) return;
+    // Each part after its length, written in place once the part is.
+    const size_t at = buffer.size();
+    PartWriter(buffer).put(uint64_t(0));
+    o.part(local, b, root_, buffer);
+    const uint64_t n = buffer.size() - at - sizeof n;
+    std::memcpy(buffer.data() + at, &n, sizeof n);
+  });
+  return buffer;
+}
+
+void OutputSet::mergeParts(const Simulation& sim, double dt, uint32_t due, const PartBounds& b,
+                           const std::vector<std::string_view>& buffers) {
+  std::vector<std::string_view> rest = buffers;
+  eachInParts([&](OutputObserver& o, size_t k) {
+    std::vector<std::string_view> mine;
+    if (due >> k & 1)
+      for (auto& r : rest) mine.push_back(takeSized(r));
+    o.onStepParts(sim, dt, b, mine);
+  });
+}
+
+void OutputSet::stepWhole(const Simulation& whole, double dt) {
+  each([&](OutputObserver& o) {
+    if (o.readsEveryStep() && !o.stepsInParts()) o.onStep(whole, dt);
+  });
 }
 
 void OutputSet::save(StateArchive& a) const {

@@ -24,11 +24,31 @@ class OutputSet {
 public:
   /// Constructs only the outputs `settings` asks for. `outDir` must exist.
   OutputSet(const OutputSettings& settings, const RunContext& run, const std::string& outDir);
+  /// Under ranks, on processes other than rank 0: only the outputs that step in parts
+  /// (OutputObserver::stepsInParts), prepared from `sim`'s scene. Touches no file.
+  struct PartsOnly {};
+  OutputSet(PartsOnly, const OutputSettings& settings, const RunContext& run, const Simulation& sim);
   ~OutputSet();
 
   void start(const Simulation& sim);
-  /// After each step; the step size is the time since the previous call.
+  /// After each step in one process; the step size is the time since the previous call.
   void step(const Simulation& sim);
+
+  /// A step under ranks, in three calls (io/run/run.cpp). Rank 0: the step size since the
+  /// previous step (as step()), and which outputs in parts are due (bit i: the i-th of them).
+  double stepTime(const Simulation& sim);
+  uint32_t partsDue(const Simulation& sim) const;
+  /// Every process: its parts of the due outputs from its own particles, as one buffer.
+  std::vector<char> parts(const Simulation& local, uint32_t due, const PartBounds& b);
+  /// Rank 0: the step of the outputs in parts from every process's buffer (rank order; none
+  /// when nothing was due), then of the outputs that read every particle, from `whole` (rank
+  /// 0's gathered copy; null when readsWholeEachStep() is false).
+  /// @throw std::runtime_error if a buffer does not hold the due parts
+  void mergeParts(const Simulation& sim, double dt, uint32_t due, const PartBounds& b,
+                  const std::vector<std::string_view>& buffers);
+  void stepWhole(const Simulation& whole, double dt);
+  /// Whether some output reads every particle after every step (the same on every process).
+  bool readsWholeEachStep() const { return readsWhole_; }
   void frame(const Simulation& sim, int index);
   void finish(const Simulation& sim, bool completed);
 
@@ -42,7 +62,10 @@ public:
 
 private:
   template <class F> void each(F&& f);
+  template <class F> void eachInParts(F&& f);
   std::vector<std::unique_ptr<OutputObserver>> outputs_;
+  bool readsWhole_ = false;
+  bool root_ = true; ///< merges the parts (rank 0, or one process): keeps its own in place
   std::vector<double> seconds_;
   double lastTime_ = 0;
 };

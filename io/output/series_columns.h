@@ -4,6 +4,7 @@
 #include "engine/simulation.h"
 #include "io/common/names.h"
 #include "engine/state_archive.h"
+#include "io/output/step_parts.h"
 
 #include <string>
 #include <vector>
@@ -22,6 +23,19 @@ public:
   /// Appends this group's values at a sample; `elapsed` is the time since the previous sample
   /// (0 at the first sample).
   virtual void sample(const Simulation& sim, double elapsed, std::vector<double>& row) = 0;
+  /// How sample() reads the particles. Whole: every particle in one place (under ranks, rank
+  /// 0's gathered copy, every step). Parts: only through part() on each process and
+  /// sampleParts() merging them exactly (io/output/step_parts.h). None: not at all (figures rank
+  /// 0 holds itself, such as the collider loads; onStep must read no particles either).
+  enum class Reads { Whole, Parts, None };
+  virtual Reads reads() const { return Reads::Whole; }
+  /// Reads::Parts: this process's contribution from its own particles.
+  virtual void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {}
+  /// Reads::Parts and None: the sample from every process's part (rank order). None: sample().
+  virtual void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
+                           const std::vector<std::string_view>& parts, std::vector<double>& row) {
+    sample(sim, elapsed, row);
+  }
   /// Checkpointing of what sample() depends on besides the simulation.
   virtual void save(StateArchive& a, const std::string& prefix) const {}
   virtual void load(const StateArchive& a, const std::string& prefix) {}

@@ -10,6 +10,8 @@
 #include "io/output/water_gauges.h"
 
 #include <cmath>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -48,22 +50,88 @@ public:
     for (const auto& n : covers_) h.push_back("entrained_mass_kg_field_" + n);
     return h;
   }
-  void sample(const Simulation& sim, double, std::vector<double>& row) override {
-    const std::vector<Simulation::GroupSums> sums = sim.groupSums();
-    double kinetic = 0, potential = 0;
-    for (const auto& s : sums) row.push_back(s.kinetic), kinetic += s.kinetic, potential += s.potential;
+  Reads reads() const override { return Reads::Parts; }
+  // Per material: mass, kinetic and potential energy as fixed-point sums (each particle's value
+  // in 64-bit units below 2^-62 of the largest, summed in 128 bits: exact in any order), and the
+  // mass culled here.
+  void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override {
+    PartWriter put(out);
+    const Vec3d g = local.settings().gravity;
+    const Units u = unitsOf(local, b);
+    const double per[3] = {powerOfTwo(-u.e[0]), powerOfTwo(-u.e[1]), powerOfTwo(-u.e[2])};
+    for (size_t gi = 0; gi < local.groups().size(); ++gi) {
+      const ParticleSet& P = local.groups()[gi]->particles;
+      const Sums s = tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(0, P.size(), 8192), Sums{},
+          [&](const tbb::blocked_range<size_t>& r, Sums acc) {
+            for (size_t i = r.begin(); i != r.end(); ++i) {
+              const double m = double(P.mass[i]);
+              acc.v[0] += toUnits(m, per[0]);
+              acc.v[1] += toUnits(0.5 * m * double(P.v[i].squaredNorm()), per[1]);
+              acc.v[2] += toUnits(-m * g.dot(P.x[i].cast<double>()), per[2]);
+            }
+            return acc;
+          },
+          [](Sums a, const Sums& c) {
+            for (int k = 0; k < 3; ++k) a.v[k] += c.v[k];
+            return a;
+          });
+      for (int k = 0; k < 3; ++k) put.put(s.v[k]);
+      put.put(gi < local.massRemoved().size() ? local.massRemoved()[gi] : 0.0);
+    }
+  }
+  void sampleParts(const Simulation& sim, double, const PartBounds& b, const std::vector<std::string_view>& parts,
+                   std::vector<double>& row) override {
+    const size_t n = sim.groups().size();
+    std::vector<Sums> sums(n);
+    std::vector<double> removed(n, 0.0);
+    for (const auto& p : parts) {
+      PartReader get(p);
+      for (size_t gi = 0; gi < n; ++gi) {
+        for (int k = 0; k < 3; ++k) sums[gi].v[k] += get.get<__int128>();
+        removed[gi] += get.get<double>(); // in rank order, as the ranks' ledgers are summed
+      }
+    }
+    const Units u = unitsOf(sim, b);
+    auto value = [&](__int128 n, int k) { return double(n) * powerOfTwo(u.e[k]); };
+    double kinetic = 0, potential = 0, massRemoved = 0;
+    for (const Sums& s : sums) {
+      const double k = value(s.v[1], 1);
+      row.push_back(k), kinetic += k, potential += value(s.v[2], 2);
+    }
     if (names_.size() > 1) row.push_back(kinetic);
     if (first_) potential0_ = potential, first_ = false;
     row.push_back(potential - potential0_);
-    for (const auto& s : sums) row.push_back(s.mass);
-    row.push_back(sim.totalMassRemoved());
+    for (const Sums& s : sums) row.push_back(value(s.v[0], 0));
+    for (double r : removed) massRemoved += r;
+    row.push_back(massRemoved);
     row.push_back(sim.maxSpeed());
     for (size_t k = 0; k < covers_.size(); ++k) row.push_back(sim.bed()->entrainedMass(k));
+  }
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
+    std::vector<char> own;
+    const PartBounds b = PartBounds::of(sim);
+    part(sim, b, own);
+    sampleParts(sim, elapsed, b, {std::string_view(own.data(), own.size())}, row);
   }
 
 private:
   void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "potential0", potential0_); }
   void load(const StateArchive& a, const std::string& prefix) override { potential0_ = a.getValue<double>(prefix + "potential0"); }
+
+  struct Sums {
+    __int128 v[3] = {0, 0, 0}; ///< mass, kinetic, potential
+  };
+  struct Units {
+    int e[3];
+  };
+  static Units unitsOf(const Simulation& sim, const PartBounds& b) {
+    constexpr int kBits = 62; // a particle's value fits an int64; 2^65 of them fit the sum
+    const Vec3d g = sim.settings().gravity;
+    const double gSum = std::abs(g.x()) + std::abs(g.y()) + std::abs(g.z());
+    return {{unitExponent(b.maxMass, kBits), unitExponent(0.5 * b.maxMass * b.maxSpeed2, kBits),
+             unitExponent(b.maxMass * gSum * b.maxCoord, kBits)}};
+  }
 
   std::vector<std::string> names_, covers_;
   double potential0_ = 0; ///< potential energy at the first row (-m g.x, local frame)
@@ -75,19 +143,37 @@ private:
 class WaterSurfaceColumns final : public SeriesColumns {
 public:
   explicit WaterSurfaceColumns(std::vector<std::string> names) : names_(std::move(names)) {}
-  void onStart(const Simulation& sim) override { water_ = waterGroups(sim, names_); }
+  void onStart(const Simulation& sim) override {
+    // By index: rank 0 starts on its gathered copy and takes parts from its own groups.
+    water_.clear();
+    for (const MaterialGroup* w : waterGroups(sim, names_))
+      for (size_t i = 0; i < sim.groups().size(); ++i)
+        if (sim.groups()[i] == w) water_.push_back(i);
+  }
   bool any() const { return !water_.empty(); }
   std::vector<std::string> header() const override { return {"max_water_surface_m"}; }
-  void sample(const Simulation& sim, double, std::vector<double>& row) override {
+  Reads reads() const override { return Reads::Parts; }
+  void part(const Simulation& local, const PartBounds&, std::vector<char>& out) const override {
+    double z = -std::numeric_limits<double>::infinity(); // a maximum: exact in any order
+    for (size_t g : water_)
+      for (const Vec3& x : local.groups()[g]->particles.x) z = std::max(z, double(x[2]));
+    PartWriter(out).put(z);
+  }
+  void sampleParts(const Simulation& sim, double, const PartBounds&, const std::vector<std::string_view>& parts,
+                   std::vector<double>& row) override {
     double z = -std::numeric_limits<double>::infinity();
-    for (const auto* g : water_)
-      for (const Vec3& x : g->particles.x) z = std::max(z, double(x[2]));
+    for (const auto& p : parts) z = std::max(z, PartReader(p).get<double>());
     row.push_back(std::isfinite(z) ? z + sim.settings().origin.z() : std::numeric_limits<double>::quiet_NaN());
+  }
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
+    std::vector<char> own;
+    part(sim, PartBounds{}, own);
+    sampleParts(sim, elapsed, PartBounds{}, {std::string_view(own.data(), own.size())}, row);
   }
 
 private:
   std::vector<std::string> names_;
-  std::vector<const MaterialGroup*> water_;
+  std::vector<size_t> water_; ///< indices into the groups
 };
 
 } // namespace
@@ -110,15 +196,57 @@ TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTi
 
 TimeSeries::~TimeSeries() = default;
 
-void TimeSeries::onStart(const Simulation& sim) {
+void TimeSeries::prepareParts(const Simulation& sim) {
   for (auto& c : columns_) c->onStart(sim);
   // The water column only exists when the scene has water.
   if (auto* w = dynamic_cast<WaterSurfaceColumns*>(columns_.back().get()); w && !w->any()) columns_.pop_back();
   table_.header = {"time_s", "dt_s"};
   for (const auto& c : columns_)
     for (const auto& h : c->header()) table_.header.push_back(h);
+}
+
+void TimeSeries::onStart(const Simulation& sim) {
+  prepareParts(sim);
   lastSample_ = sim.time();
   sample(sim);
+}
+
+bool TimeSeries::stepsInParts() const {
+  for (const auto& c : columns_)
+    if (c->reads() == SeriesColumns::Reads::Whole) return false;
+  return true;
+}
+
+bool TimeSeries::partDue(const Simulation& sim) const { return sim.time() >= nextSample_ - 1e-9 * interval_; }
+
+void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
+  for (const auto& c : columns_) {
+    if (c->reads() != SeriesColumns::Reads::Parts) continue;
+    std::vector<char> p;
+    c->part(local, b, p);
+    putSized(out, p);
+  }
+}
+
+void TimeSeries::onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                             const std::vector<std::string_view>& parts) {
+  lastDt_ = dt;
+  for (auto& c : columns_) c->onStep(sim, dt); // none reads particles (stepsInParts)
+  if (parts.empty()) return;
+  // Each process's part is its columns' parts in turn, each after its length.
+  std::vector<std::string_view> rest = parts;
+  const double elapsed = sim.time() - lastSample_;
+  std::vector<double> row{sim.time(), lastDt_};
+  for (auto& c : columns_) {
+    if (c->reads() != SeriesColumns::Reads::Parts) {
+      c->sampleParts(sim, elapsed, b, {}, row);
+      continue;
+    }
+    std::vector<std::string_view> mine;
+    for (auto& r : rest) mine.push_back(takeSized(r));
+    c->sampleParts(sim, elapsed, b, mine, row);
+  }
+  endSample(sim, std::move(row));
 }
 
 void TimeSeries::save(StateArchive& a, const std::string& prefix) const {
@@ -155,6 +283,10 @@ void TimeSeries::sample(const Simulation& sim) {
   const double elapsed = sim.time() - lastSample_;
   std::vector<double> row{sim.time(), lastDt_};
   for (auto& c : columns_) c->sample(sim, elapsed, row);
+  endSample(sim, std::move(row));
+}
+
+void TimeSeries::endSample(const Simulation& sim, std::vector<double>&& row) {
   table_.rows.push_back(std::move(row));
   lastSample_ = sim.time();
   nextSample_ = (std::floor(sim.time() / interval_ + 1e-9) + 1) * interval_;

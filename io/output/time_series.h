@@ -28,6 +28,15 @@ public:
   std::string name() const override { return "time_series"; }
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
+  bool readsEveryStep() const override { return true; }
+  /// In parts when no column reads the particles whole (sections, paths, probes, gauges and the
+  /// entrained mass of erodible materials do).
+  bool stepsInParts() const override;
+  void prepareParts(const Simulation& sim) override;
+  bool partDue(const Simulation& sim) const override;
+  void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
+  void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                   const std::vector<std::string_view>& parts) override;
   void onFrame(const Simulation& sim, int index) override;
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
@@ -39,6 +48,7 @@ public:
 
 private:
   void sample(const Simulation& sim);
+  void endSample(const Simulation& sim, std::vector<double>&& row);
   void writeCsv();
 
   std::string outDir_;

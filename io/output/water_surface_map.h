@@ -33,6 +33,7 @@ public:
   /// Finds the water; a scene without water makes this output write nothing.
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
+  bool readsEveryStep() const override { return true; }
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;

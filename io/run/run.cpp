@@ -91,11 +91,13 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
       s.outputs->start(*s.view);
     });
+    // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts).
+    if (!s.ranks.root()) s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_);
     if (opt.resume) {
       // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
       // a run checkpointed at N ranks resumes at any M.
       readCheckpoint(s.checkpointFile, *sim_, s.identity, [&](const StateArchive& a) {
-        if (s.outputs) s.outputs->load(a);
+        if (s.outputs && s.ranks.root()) s.outputs->load(a); // the others' parts keep no state
         s.frame = a.getValue<int32_t>("driver/next_frame");
         s.nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
         // A resumed run may have another frame interval: its frames continue after this time.
@@ -168,14 +170,8 @@ bool Run::advanceTo(double t, const std::function<void()>& after) {
 void Run::afterStep() {
   State& s = *s_;
   if (s.output.readsEveryStep()) {
-    // Positions, velocities and masses are all the per-step outputs read.
-    if (s.ranks.active()) sim_->gatherInto(s.viewed.get(), Simulation::GatherScope::Kinematics);
-    s.ranks.onRoot([&] {
-      // Not the gather: its time includes waiting for slower ranks.
-      const auto o0 = std::chrono::steady_clock::now();
-      s.outputs->step(*s.view);
-      s.balance.addOutputSeconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count());
-    });
+    if (s.ranks.active()) stepOutputsOnRanks();
+    else s.outputs->step(*sim_);
   }
   if (s.ranks.active()) s.balance.afterStep(s.ranks, *sim_);
   s.bar->update(sim_->time(), sim_->steps(), sim_->particleSteps());
@@ -196,6 +192,35 @@ void Run::afterStep() {
   }
   // At the end time the run is complete: its final outputs are quicker than a resume.
   if (const int sig = s.ranks.agree(stopSignalReceived()); sig && sim_->time() < endTime_) interrupt(sig);
+}
+
+void Run::stepOutputsOnRanks() {
+  State& s = *s_;
+  OutputSet& out = *s.outputs;
+  Communicator& comm = s.ranks.comm();
+  const bool root = s.ranks.root();
+  // One reduction: which outputs rank 0 needs this step, and every rank's maxima (the units of
+  // the parts' fixed-point sums).
+  const double dt = root ? out.stepTime(*sim_) : 0.0;
+  const PartBounds mine = PartBounds::of(*sim_);
+  double v[4] = {root ? -double(out.partsDue(*sim_)) : 0.0, -mine.maxMass, -mine.maxSpeed2, -mine.maxCoord};
+  comm.minimum(v, 4);
+  const uint32_t due = uint32_t(-v[0]);
+  const PartBounds b{-v[1], -v[2], -v[3]};
+  std::vector<char> all;
+  std::vector<size_t> counts;
+  if (due) all = comm.gather(out.parts(*sim_, due, b), counts);
+  // Only what reads every particle still needs them gathered (positions, velocities, masses).
+  if (out.readsWholeEachStep()) sim_->gatherInto(s.viewed.get(), Simulation::GatherScope::Kinematics);
+  s.ranks.onRoot([&] {
+    // Not the collectives: their time includes waiting for slower ranks.
+    const auto o0 = std::chrono::steady_clock::now();
+    std::vector<std::string_view> buffers;
+    for (size_t r = 0, at = 0; r < counts.size(); at += counts[r++]) buffers.emplace_back(all.data() + at, counts[r]);
+    out.mergeParts(*sim_, dt, due, b, buffers);
+    if (out.readsWholeEachStep()) out.stepWhole(*s.view, dt);
+    s.balance.addOutputSeconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count());
+  });
 }
 
 void Run::checkpoint() {

@@ -49,6 +49,8 @@ public:
 private:
   struct State;
   void afterStep();
+  /// The per-step outputs under ranks: parts reduced to rank 0, then what reads every particle.
+  void stepOutputsOnRanks();
   void finish();
   template <class F> void guarded(F&& f);
   void writeFailed(const std::string& what);
