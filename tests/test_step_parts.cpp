@@ -1,10 +1,11 @@
-// Per-step outputs in parts (io/output/step_parts.h): the maps and the series (with a path's
-// front) made from the particles split into parts, as ranks make them, are one process's bit for
-// bit, whatever the split. The split here is the hardest for sums in a fixed order: alternate particles, so every
-// map cell and every material draws from both parts.
+// Per-step outputs in parts (io/output/step_parts.h): the maps, the run-up map and the series
+// (with a path's front) made from the particles split into parts, as ranks make them, are one
+// process's bit for bit, whatever the split. The split here is the hardest for sums in a fixed
+// order: alternate particles, so every map cell and every material draws from both parts.
 #include "engine/domain_decomposition.h"
 #include "io/output/hazard_maps.h"
 #include "io/output/time_series.h"
+#include "io/output/water_surface_map.h"
 #include "test_support.h"
 #include "two_slabs.h"
 
@@ -121,4 +122,52 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   double exact = 0;
   for (Real m : sim->groups()[0]->particles.mass) exact += double(m);
   EXPECT_NEAR(x.rows.back()[size_t(mass)], exact, 1e-12 * exact);
+}
+
+TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
+  // A water column collapsing along a flume: the surface per cell moves every step.
+  const std::string flume = R"([simulation]
+dx = 0.04
+end_time = 0.6
+[domain]
+min = [0, 0, 0]
+max = [2.4, 0.16, 0.6]
+walls = "slip"
+[[materials]]
+name = "water"
+model = "water"
+density = 1000
+sound_speed = 20
+[[bodies]]
+material = "water"
+shape = "box"
+min = [0, 0, 0]
+max = [0.6, 0.16, 0.4]
+)";
+  auto sim = test::makeSimulation(flume);
+  auto even = test::makeSimulation(flume), odd = test::makeSimulation(flume);
+  RunContext run;
+  run.origin = sim->settings().origin;
+  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
+  const RasterGrid grid = HazardMaps::domainGrid(run, 0.08);
+  const std::string dir = test::tempDir("step_parts_runup");
+  WaterSurfaceMap one(dir, grid, nullptr, {}, 0.02, false), parts(dir, grid, nullptr, {}, 0.02, false);
+  one.onStart(*sim);
+  parts.onStart(*sim);
+  ASSERT_TRUE(parts.partDue(*sim));
+  for (int i = 0; i < 30; ++i) {
+    const double dt = sim->step();
+    one.onStep(*sim, dt);
+    keepAlternate(*sim, *even, 0);
+    keepAlternate(*sim, *odd, 1);
+    const PartBounds b = mergedBounds(*even, *odd);
+    std::vector<char> sent, kept;
+    parts.part(*odd, b, false, sent);
+    parts.part(*even, b, true, kept);
+    parts.onStepParts(*sim, dt, b, {view(kept), view(sent)});
+  }
+  const auto a = one.maxSurface(), c = parts.maxSurface();
+  ASSERT_EQ(a.size(), c.size());
+  EXPECT_EQ(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)), 0);
+  EXPECT_GT(std::count_if(a.begin(), a.end(), [](float z) { return z > 0.3f; }), 0) << "the column's surface";
 }

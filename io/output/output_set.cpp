@@ -23,9 +23,14 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
     if (o.vdbPoints) outputs_.push_back(std::make_unique<VdbPointsWriter>(outDir, crs));
     if (o.ply) outputs_.push_back(std::make_unique<PlyFrameWriter>(outDir));
   }
-  if (o.series) {
-    outputs_.push_back(std::make_unique<TimeSeries>(outDir, o, run.endTime, run.particleSpacing));
-  }
+  addStepOutputs(o, run, outDir);
+  seconds_.assign(outputs_.size(), 0.0);
+  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
+}
+
+void OutputSet::addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir) {
+  // Their constructors touch no file (the frame formats' make folders): PartsOnly makes them too.
+  if (o.series) outputs_.push_back(std::make_unique<TimeSeries>(outDir, o, run.endTime, run.particleSpacing));
   if (o.maps.enabled) {
     // On the DEM's grid when there is one; else over the domain, two grid cells per map cell
     // unless cell_size says otherwise (fewer particles per cell make noisier maps).
@@ -39,20 +44,12 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
       outputs_.push_back(std::make_unique<WaterSurfaceMap>(outDir, grid, run.dem, o.waterMaterials,
                                                            run.particleSpacing, o.maps.quicklook));
   }
-  seconds_.assign(outputs_.size(), 0.0);
-  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
 }
 
 OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, const Simulation& sim) {
-  // In the root's order. The series', the maps' and the peak files' constructors touch no file
-  // (the frame formats' make folders).
-  if (o.series) outputs_.push_back(std::make_unique<TimeSeries>("", o, run.endTime, run.particleSpacing));
-  if (o.maps.enabled) {
-    const double cell = o.maps.cellSize > 0 ? o.maps.cellSize : 2 * run.dx;
-    RasterGrid grid = run.dem ? run.dem->grid : HazardMaps::domainGrid(run, cell);
-    outputs_.push_back(std::make_unique<HazardMaps>("", grid, run.dem, o.maps));
-    if (o.maps.peakFiles.enabled) outputs_.push_back(std::make_unique<AvaFrameRunFiles>("", o, run));
-  }
+  // The per-step outputs in rank 0's order; whether one reads every particle is decided as there
+  // (every rank then takes part in its gather).
+  addStepOutputs(o, run, "");
   for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
   outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(), [](const auto& out) { return !out->stepsInParts(); }),
                  outputs_.end());

@@ -61,6 +61,8 @@ public:
   std::vector<OutputReport> reports() const;
 
 private:
+  /// The outputs that may read the particles after every step (series, maps, peak files, run-up).
+  void addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir);
   template <class F> void each(F&& f);
   template <class F> void eachInParts(F&& f);
   std::vector<std::unique_ptr<OutputObserver>> outputs_;

@@ -23,52 +23,105 @@ WaterSurfaceMap::WaterSurfaceMap(std::string outDir, RasterGrid grid, std::share
     : outDir_(std::move(outDir)), grid_(std::move(grid)), dem_(std::move(dem)),
       waterMaterials_(std::move(waterMaterials)), spacing_(particleSpacing), quicklook_(quicklook) {}
 
-void WaterSurfaceMap::onStart(const Simulation& sim) {
-  water_ = waterGroups(sim, waterMaterials_);
+void WaterSurfaceMap::prepareParts(const Simulation& sim) {
+  // By index: rank 0 starts on its gathered copy and takes parts from its own groups.
+  water_.clear();
+  for (const MaterialGroup* w : waterGroups(sim, waterMaterials_))
+    for (size_t i = 0; i < sim.groups().size(); ++i)
+      if (sim.groups()[i] == w) water_.push_back(i);
   if (water_.empty()) return;
   // The window: the cells of the grid the domain's xy extent touches (as the hazard maps').
   const auto& st = sim.settings();
   const Vec3d lo = st.domain.min + st.origin, hi = st.domain.max + st.origin;
   window_ = windowOf(grid_, lo.x(), lo.y(), hi.x(), hi.y(), c0_, r0_);
   originZ_ = st.origin.z();
-  volume_.assign(window_.size(), 0.f);
+  volume_.assign(window_.size(), 0);
   bottom_.assign(window_.size(), std::numeric_limits<float>::infinity());
+}
+
+void WaterSurfaceMap::onStart(const Simulation& sim) {
+  prepareParts(sim);
+  if (water_.empty()) return;
   surfaces(sim, initial_);
   max_ = initial_;
 }
 
-void WaterSurfaceMap::surfaces(const Simulation& sim, std::vector<float>& out) {
-  const Vec3d& o = sim.settings().origin;
-  const double inv = 1 / window_.cellSize;
-  touched_.clear();
-  // One pass over the water in particle order: the sums are the same at any thread count.
-  for (const MaterialGroup* g : water_) {
-    const ParticleSet& P = g->particles;
-    const double rho = g->density();
+int WaterSurfaceMap::volumeUnit(const Simulation& sim, const PartBounds& b) const {
+  double invRho = 0;
+  for (size_t g : water_) invRho = std::max(invRho, 1.0 / sim.groups()[g]->density());
+  return unitExponent(b.maxMass * invRho, 40); // 2^23 of the largest particles fit a cell's int64
+}
+
+void WaterSurfaceMap::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
+  const Vec3d& o = local.settings().origin;
+  const double inv = 1 / window_.cellSize, perUnit = powerOfTwo(-volumeUnit(local, b));
+  // Fixed-point volumes and the lowest particle per cell: exact in any order and any split.
+  for (size_t g : water_) {
+    const ParticleSet& P = local.groups()[g]->particles;
+    const double rho = local.groups()[g]->density();
     for (size_t p = 0; p < P.size(); ++p) {
       const double c = (double(P.x[p].x()) + o.x() - window_.originX) * inv;
       const double r = (window_.originY - double(P.x[p].y()) - o.y()) * inv;
       if (!(c >= 0 && r >= 0 && c < window_.nx && r < window_.ny)) continue;
       const uint32_t cell = uint32_t(window_.index(int(c), int(r)));
-      if (volume_[cell] == 0.f) touched_.push_back(cell);
-      volume_[cell] += float(double(P.mass[p]) / rho);
+      if (std::isinf(bottom_[cell])) touched_.push_back(cell);
+      volume_[cell] += toUnits(double(P.mass[p]) / rho, perUnit);
       bottom_[cell] = std::min(bottom_[cell], float(double(P.x[p].z()) - 0.5 * spacing_));
     }
   }
-  out.assign(window_.size(), kNaN);
-  const double area = window_.cellSize * window_.cellSize;
+  if (keep) return; // onStepParts adds the others' cells to these
+  PartWriter put(out);
   for (uint32_t cell : touched_) {
-    out[cell] = float(originZ_ + bottom_[cell] + volume_[cell] / area);
-    volume_[cell] = 0.f;
-    bottom_[cell] = std::numeric_limits<float>::infinity();
+    put.put(cell), put.put(volume_[cell]), put.put(bottom_[cell]);
+    volume_[cell] = 0, bottom_[cell] = std::numeric_limits<float>::infinity();
   }
+  touched_.clear();
 }
 
-void WaterSurfaceMap::onStep(const Simulation& sim, double) {
+std::vector<uint32_t> WaterSurfaceMap::mergeParts(const Simulation& sim, const PartBounds& b,
+                                                  const std::vector<std::string_view>& parts, std::vector<float>& out) {
+  for (const auto& p : parts) {
+    PartReader get(p);
+    while (!get.done()) {
+      const uint32_t cell = get.get<uint32_t>();
+      if (cell >= volume_.size()) throw std::runtime_error("run-up map: a part names a cell outside the map");
+      if (std::isinf(bottom_[cell])) touched_.push_back(cell);
+      volume_[cell] += get.get<int64_t>();
+      bottom_[cell] = std::min(bottom_[cell], get.get<float>());
+    }
+  }
+  out.assign(window_.size(), kNaN);
+  const double perArea = powerOfTwo(volumeUnit(sim, b)) / (window_.cellSize * window_.cellSize);
+  for (uint32_t cell : touched_) {
+    out[cell] = float(originZ_ + bottom_[cell] + double(volume_[cell]) * perArea);
+    volume_[cell] = 0;
+    bottom_[cell] = std::numeric_limits<float>::infinity();
+  }
+  std::vector<uint32_t> cells;
+  cells.swap(touched_); // the scratch is empty for the next part
+  return cells;
+}
+
+void WaterSurfaceMap::surfaces(const Simulation& sim, std::vector<float>& out) {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, true, own);
+  mergeParts(sim, b, {}, out);
+}
+
+void WaterSurfaceMap::onStep(const Simulation& sim, double dt) {
+  if (water_.empty()) return;
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, true, own);
+  onStepParts(sim, dt, b, {});
+}
+
+void WaterSurfaceMap::onStepParts(const Simulation& sim, double, const PartBounds& b,
+                                  const std::vector<std::string_view>& parts) {
   if (water_.empty()) return;
   std::vector<float> now;
-  surfaces(sim, now);
-  for (uint32_t cell : touched_)
+  for (uint32_t cell : mergeParts(sim, b, parts, now))
     if (!(max_[cell] >= now[cell])) max_[cell] = now[cell]; // NaN (never wet) is replaced
 }
 

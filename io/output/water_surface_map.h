@@ -10,7 +10,8 @@
 // initial level of the nearest cell that was wet (4-neighbour steps), so on a shore the rise is
 // the run-up height above the still water the wave came from. NaN (no data) where water never was.
 // Cells are a few particles wide: the surface is their mean over the cell, so a crest narrower
-// than a cell reads lower than a gauge on it.
+// than a cell reads lower than a gauge on it. Volumes are fixed-point integers and bottoms minima
+// (io/output/step_parts.h), so under ranks each rank makes its own cells' part.
 #pragma once
 
 #include "io/output/output_observer.h"
@@ -34,6 +35,13 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
+  /// In parts: each rank's fixed-point water volume and lowest water particle per cell.
+  bool stepsInParts() const override { return true; }
+  void prepareParts(const Simulation& sim) override;
+  bool partDue(const Simulation&) const override { return !water_.empty(); }
+  void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
+  void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
+                   const std::vector<std::string_view>& parts) override;
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;
@@ -48,6 +56,11 @@ public:
 private:
   /// The water surface of every window cell now (NaN where dry).
   void surfaces(const Simulation& sim, std::vector<float>& out);
+  /// Adds the parts' cells to this process's kept one, and the surface of every cell touched;
+  /// returns the cells touched and empties the scratch.
+  std::vector<uint32_t> mergeParts(const Simulation& sim, const PartBounds& b, const std::vector<std::string_view>& parts,
+                  std::vector<float>& out);
+  int volumeUnit(const Simulation& sim, const PartBounds& b) const;
   std::vector<float> onGrid(const std::vector<float>& window) const;
 
   std::string outDir_;
@@ -57,10 +70,11 @@ private:
   std::vector<std::string> waterMaterials_;
   double spacing_;
   bool quicklook_;
-  std::vector<const MaterialGroup*> water_;
+  std::vector<size_t> water_; ///< indices of the water groups
   double originZ_ = 0;
   std::vector<float> initial_, max_;   ///< per window cell (NaN: dry)
-  std::vector<float> volume_, bottom_; ///< scratch per window cell
+  std::vector<int64_t> volume_;        ///< scratch per window cell: fixed-point volume
+  std::vector<float> bottom_;          ///< and lowest particle (infinite: none yet)
   std::vector<uint32_t> touched_;
 };
 

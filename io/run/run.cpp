@@ -277,7 +277,7 @@ void Run::record() {
   res_.steps = sim_->steps(), res_.time = sim_->time();
   res_.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s.t0).count();
   s.info.wallSeconds = res_.wallSeconds;
-  if (s.outputs) s.info.outputs = s.outputs->reports();
+  if (s.outputs && s.ranks.root()) s.info.outputs = s.outputs->reports(); // the others' make parts only
   res_.files.clear();
   for (const auto& o : s.info.outputs) res_.files.insert(res_.files.end(), o.files.begin(), o.files.end());
   res_.files.push_back("summary.json");

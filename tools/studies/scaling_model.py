@@ -17,10 +17,11 @@ COLLECTIVES = 16               # latency-bound collectives per step (dt 4, speed
                                # imbalance 2, loads, 2 all-to-all counts, neighbours' blocks,
                                # run: root flag, 2 signal agreements, minima)
 NEIGHBOURS = 6                 # halo messages per rank per step
-RECORD_BYTES = 28              # bytes per particle gathered to rank 0 for per-step outputs
-                               # (position, velocity, mass; whole records only at frames)
-OUTPUT_SHARE = 0.076           # rank 0's per-step output work as a share of one process's step
-                               # (measured: 4 500 particle-equivalents of 59 466, default scene)
+# Per-step outputs in parts (io/output/step_parts.h): each rank sends rank 0 the map cells its
+# particles touch, 4 + 32 bytes per material each; rank 0 adds them alone.
+CELL_BYTES = 4 + 32 * 2        # two materials' layers
+PARTICLES_PER_CELL = PPC_MEASURED   # particles per touched map cell per step (default scene)
+MERGE_NS_PER_CELL = MERGE_MEASURED  # rank 0's adding and folding per cell received (default scene)
 NETWORKS = {"10 Gb/s Ethernet": (30e-6, 1.25e9), "100 Gb/s InfiniBand": (2e-6, 12.5e9)}
 
 
@@ -55,12 +56,15 @@ def main():
         c, m, _ = step(1.25e6 * ranks, ranks, 16, alpha, beta) if ranks > 1 else (1.25e6 / (RATE_PER_CORE * 16 * PARALLEL_EFF), 0, 0)
         print(f"  {ranks:4d} ranks: step {1e3 * (c + m):.2f} ms, efficiency {100 * c / (c + m):.1f} %")
     print()
-    print("Per-step outputs of `talus run` gathered to rank 0 (20 M particles):")
+    print("Per-step outputs of `talus run` in parts (20 M particles, 100 ranks of 16 threads):")
+    cells = n_total / PARTICLES_PER_CELL
+    c, _, _ = step(n_total, 100, 16, *NETWORKS["100 Gb/s InfiniBand"])
     for net, (alpha, beta) in NETWORKS.items():
-        print(f"  {net}: {n_total * RECORD_BYTES / 1e9:.2f} GB per step into rank 0: {n_total * RECORD_BYTES / beta:.3f} s per step")
-    out = OUTPUT_SHARE * n_total / (RATE_PER_CORE * 16 * PARALLEL_EFF)
-    print(f"  rank 0's maps and series on 16 threads: {out:.3f} s per step (it then owns no particles)")
-
+        recv = cells * CELL_BYTES / beta
+        merge = cells * MERGE_NS_PER_CELL * 1e-9
+        print(f"  {net}: {cells * CELL_BYTES / 1e6:.1f} MB of parts per step into rank 0: {1e3 * recv:.2f} ms, "
+              f"its adding {1e3 * merge:.2f} ms, against the engine's {1e3 * c:.2f} ms step: "
+              f"+{100 * (recv + merge) / c:.0f} %")
 
 if __name__ == "__main__":
     main()
