@@ -5,6 +5,7 @@
 #include "process_support.h"
 #include "terrain_test_support.h"
 #include "test_support.h"
+#include "water_flume.h"
 
 #include <filesystem>
 #include <fstream>
@@ -178,25 +179,7 @@ frame_interval = 0.2
 checkpoint_interval = 0.1
 series_interval = 0.01
 )";
-const std::string kWaterFlume = R"(
-[simulation]
-dx = 0.04
-end_time = 0.6
-[domain]
-min = [0, 0, 0]
-max = [2.4, 0.16, 0.6]
-walls = "slip"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = 20
-[[bodies]]
-material = "water"
-shape = "box"
-min = [0, 0, 0]
-max = [0.6, 0.16, 0.4]
-)" + kOutputs + R"(
+const std::string kWaterFlume = std::string(test::kWaterFlumeScene) + kOutputs + R"(
 [[output.gauges]]
 name = "near"
 point = [1.0, 0.08]

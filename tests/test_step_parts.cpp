@@ -8,6 +8,7 @@
 #include "io/output/water_surface_map.h"
 #include "test_support.h"
 #include "two_slabs.h"
+#include "water_flume.h"
 
 #include <cstring>
 #include <gtest/gtest.h>
@@ -42,6 +43,20 @@ PartBounds mergedBounds(const Simulation& a, const Simulation& b) {
   return {std::max(x.maxMass, y.maxMass), std::max(x.maxSpeed2, y.maxSpeed2), std::max(x.maxCoord, y.maxCoord)};
 }
 
+/// One step of `parts` as rank 0 takes it with two ranks: `sim`'s alternate particles in `even`
+/// (rank 0's own, kept in place) and `odd` (the other rank's, sent first), every rank's maxima.
+/// Returns the sent part's size.
+size_t stepInTwoParts(OutputObserver& parts, const Simulation& sim, Simulation& even, Simulation& odd, double dt) {
+  keepAlternate(sim, even, 0);
+  keepAlternate(sim, odd, 1);
+  const PartBounds b = mergedBounds(even, odd);
+  std::vector<char> sent, kept;
+  parts.part(odd, b, false, sent);
+  parts.part(even, b, true, kept);
+  parts.onStepParts(sim, dt, b, {view(kept), view(sent)});
+  return sent.size();
+}
+
 } // namespace
 
 TEST(StepParts, MapsFromAlternateParticlesInTwoPartsAreOneProcesssBitForBit) {
@@ -56,16 +71,7 @@ TEST(StepParts, MapsFromAlternateParticlesInTwoPartsAreOneProcesssBitForBit) {
     const double dt = sim->step();
     one.onStep(*sim, dt);
     ASSERT_TRUE(parts.partDue(*sim));
-    keepAlternate(*sim, *even, 0);
-    keepAlternate(*sim, *odd, 1);
-    const PartBounds b = mergedBounds(*even, *odd);
-    // As rank 0 does: the other rank's part sent, then its own kept in place.
-    std::vector<char> sent, kept;
-    parts.part(*odd, b, false, sent);
-    parts.part(*even, b, true, kept);
-    EXPECT_TRUE(kept.empty());
-    EXPECT_FALSE(sent.empty());
-    parts.onStepParts(*sim, dt, b, {view(kept), view(sent)});
+    EXPECT_GT(stepInTwoParts(parts, *sim, *even, *odd, dt), 0u);
   }
   EXPECT_EQ(parts.accumulations(), one.accumulations());
   for (int layer = 0; layer < 3; ++layer)
@@ -100,13 +106,7 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
       parts.onStepParts(*sim, dt, PartBounds{}, {});
       continue;
     }
-    keepAlternate(*sim, *even, 0);
-    keepAlternate(*sim, *odd, 1);
-    const PartBounds b = mergedBounds(*even, *odd);
-    std::vector<char> a, c;
-    parts.part(*even, b, true, a);
-    parts.part(*odd, b, false, c);
-    parts.onStepParts(*sim, dt, b, {view(a), view(c)});
+    stepInTwoParts(parts, *sim, *even, *odd, dt);
   }
   const SeriesTable &x = one.table(), &y = parts.table();
   ASSERT_GT(x.rows.size(), 10u);
@@ -126,24 +126,7 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
 
 TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   // A water column collapsing along a flume: the surface per cell moves every step.
-  const std::string flume = R"([simulation]
-dx = 0.04
-end_time = 0.6
-[domain]
-min = [0, 0, 0]
-max = [2.4, 0.16, 0.6]
-walls = "slip"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = 20
-[[bodies]]
-material = "water"
-shape = "box"
-min = [0, 0, 0]
-max = [0.6, 0.16, 0.4]
-)";
+  const std::string flume = test::kWaterFlumeScene;
   auto sim = test::makeSimulation(flume);
   auto even = test::makeSimulation(flume), odd = test::makeSimulation(flume);
   RunContext run;
@@ -158,13 +141,7 @@ max = [0.6, 0.16, 0.4]
   for (int i = 0; i < 30; ++i) {
     const double dt = sim->step();
     one.onStep(*sim, dt);
-    keepAlternate(*sim, *even, 0);
-    keepAlternate(*sim, *odd, 1);
-    const PartBounds b = mergedBounds(*even, *odd);
-    std::vector<char> sent, kept;
-    parts.part(*odd, b, false, sent);
-    parts.part(*even, b, true, kept);
-    parts.onStepParts(*sim, dt, b, {view(kept), view(sent)});
+    stepInTwoParts(parts, *sim, *even, *odd, dt);
   }
   const auto a = one.maxSurface(), c = parts.maxSurface();
   ASSERT_EQ(a.size(), c.size());
