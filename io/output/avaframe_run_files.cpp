@@ -29,10 +29,7 @@ void AvaFrameRunFiles::onStart(const Simulation& sim) {
 
 void AvaFrameRunFiles::onStep(const Simulation& sim, double dt) {
   if (!partDue(sim)) return;
-  std::vector<char> own;
-  const PartBounds b = PartBounds::of(sim);
-  part(sim, b, true, own);
-  onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
+  stepOwnPart(sim, dt);
 }
 
 bool AvaFrameRunFiles::partDue(const Simulation& sim) const { return sim.time() + 1e-9 >= double(next_) * kInterval; }

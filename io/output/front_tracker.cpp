@@ -128,10 +128,7 @@ void FrontTracker::sampleParts(const Simulation& sim, double elapsed, const Part
 }
 
 void FrontTracker::sample(const Simulation& sim, double elapsed, std::vector<double>& row) {
-  std::vector<char> own;
-  const PartBounds b = PartBounds::of(sim);
-  part(sim, b, own);
-  sampleParts(sim, elapsed, b, {std::string_view(own.data(), own.size())}, row);
+  sampleOwnPart(sim, elapsed, row);
 }
 
 } // namespace talus

@@ -120,12 +120,11 @@ void HazardMaps::onStart(const Simulation& sim) {
       if (groups[g]->name() == n) m.erodibleGroup[g] = 1;
   if (!settings_.erodible.empty()) m.thickness(sim, m.erodibleGroup, m.initial);
   m.thickness(sim, std::vector<uint8_t>(groups.size(), 1), m.start);
-  accumulate(sim, 0);
+  stepOwnPart(sim, 0); // the first accumulation: the start
 }
 
 void HazardMaps::onStep(const Simulation& sim, double dt) {
-  if (!partDue(sim)) return;
-  accumulate(sim, dt);
+  if (partDue(sim)) stepOwnPart(sim, dt);
 }
 
 bool HazardMaps::partDue(const Simulation& sim) const {
@@ -324,13 +323,6 @@ void HazardMaps::part(const Simulation& local, const PartBounds& b, bool keep, s
   m.binSplats(local, all, float(settings_.minSpeed)); // moving material only, when min_speed is set
   m.sumBands(local, all);
   if (!keep) m.writeTouched(out); // else the sums stay, and onStepParts adds the others to them
-}
-
-void HazardMaps::accumulate(const Simulation& sim, double dt) {
-  std::vector<char> own;
-  const PartBounds b = PartBounds::of(sim);
-  part(sim, b, true, own);
-  onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
 }
 
 void HazardMaps::onStepParts(const Simulation& sim, double, const PartBounds& b,

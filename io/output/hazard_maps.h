@@ -75,8 +75,6 @@ public:
   std::vector<std::pair<std::string, std::string>> summary() const override;
 
 private:
-  /// One accumulation from this process's particles alone (its own part).
-  void accumulate(const Simulation& sim, double dt);
   bool animationFrameDue(double time) const;
   void makeFilm();
   std::string animationOutcome_;

@@ -50,6 +50,14 @@ public:
   virtual void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                            const std::vector<std::string_view>& parts) {}
 
+  /// onStep of an output in parts in one process: its own part, merged alone.
+  void stepOwnPart(const Simulation& sim, double dt) {
+    std::vector<char> own;
+    const PartBounds b = PartBounds::of(sim);
+    part(sim, b, true, own);
+    onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
+  }
+
   /// Checkpointing: the state accumulated since the start (maxima, rows, pending volumes), so a
   /// resumed run writes the same files as an uninterrupted one. On resume the driver calls
   /// onStart on the initial state first, then load.

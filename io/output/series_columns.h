@@ -36,6 +36,13 @@ public:
                            const std::vector<std::string_view>& parts, std::vector<double>& row) {
     sample(sim, elapsed, row);
   }
+  /// sample() of a Reads::Parts column: its own part, merged alone.
+  void sampleOwnPart(const Simulation& sim, double elapsed, std::vector<double>& row) {
+    std::vector<char> own;
+    const PartBounds b = PartBounds::of(sim);
+    part(sim, b, own);
+    sampleParts(sim, elapsed, b, {std::string_view(own.data(), own.size())}, row);
+  }
   /// Checkpointing of what sample() depends on besides the simulation.
   virtual void save(StateArchive& a, const std::string& prefix) const {}
   virtual void load(const StateArchive& a, const std::string& prefix) {}

@@ -109,10 +109,7 @@ public:
     for (size_t k = 0; k < covers_.size(); ++k) row.push_back(sim.bed()->entrainedMass(k));
   }
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    std::vector<char> own;
-    const PartBounds b = PartBounds::of(sim);
-    part(sim, b, own);
-    sampleParts(sim, elapsed, b, {std::string_view(own.data(), own.size())}, row);
+    sampleOwnPart(sim, elapsed, row);
   }
 
 private:
@@ -166,9 +163,7 @@ public:
     row.push_back(std::isfinite(z) ? z + sim.settings().origin.z() : std::numeric_limits<double>::quiet_NaN());
   }
   void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    std::vector<char> own;
-    part(sim, PartBounds{}, own);
-    sampleParts(sim, elapsed, PartBounds{}, {std::string_view(own.data(), own.size())}, row);
+    sampleOwnPart(sim, elapsed, row);
   }
 
 private:

@@ -110,11 +110,7 @@ void WaterSurfaceMap::surfaces(const Simulation& sim, std::vector<float>& out) {
 }
 
 void WaterSurfaceMap::onStep(const Simulation& sim, double dt) {
-  if (water_.empty()) return;
-  std::vector<char> own;
-  const PartBounds b = PartBounds::of(sim);
-  part(sim, b, true, own);
-  onStepParts(sim, dt, b, {});
+  if (!water_.empty()) stepOwnPart(sim, dt);
 }
 
 void WaterSurfaceMap::onStepParts(const Simulation& sim, double, const PartBounds& b,
