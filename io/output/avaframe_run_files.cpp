@@ -36,7 +36,7 @@ bool AvaFrameRunFiles::partDue(const Simulation& sim) const { return sim.time() 
 
 void AvaFrameRunFiles::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
   // The particles' mass but the covers' (below), in fixed point: exact in any order.
-  const double perUnit = powerOfTwo(-unitExponent(b.maxMass, 62));
+  const double perUnit = powerOfTwo(-unitExponent(b.maxMass, kTotalBits));
   __int128 units = 0;
   for (const auto& g : local.groups()) {
     if (std::find(erodible_.begin(), erodible_.end(), g->name()) != erodible_.end()) continue;
@@ -50,7 +50,7 @@ void AvaFrameRunFiles::onStepParts(const Simulation& sim, double, const PartBoun
   if (parts.empty()) return;
   __int128 units = 0;
   for (const auto& p : parts) units += PartReader(p).get<__int128>();
-  const double mass = double(units) * powerOfTwo(unitExponent(b.maxMass, 62));
+  const double mass = double(units) * powerOfTwo(unitExponent(b.maxMass, kTotalBits));
   // Rows on com1DFA's 0.1 s clock, each the state after the step that reaches it.
   while (partDue(sim)) sample(sim, double(next_++) * kInterval, mass);
 }

@@ -28,9 +28,7 @@ std::vector<std::string> FrontTracker::header() const {
 int FrontTracker::binsAlong() const { return std::max(1, int(std::ceil(length() / bin_))); }
 
 int FrontTracker::volumeUnit(const Simulation& sim, const PartBounds& b) {
-  double invRho = 0;
-  for (const auto* g : sim.groups()) invRho = std::max(invRho, 1.0 / g->density());
-  return unitExponent(b.maxMass * invRho, 40); // 2^23 of the largest particles fit a bin's int64
+  return unitExponent(volumeBound(sim, b), kCellBits);
 }
 
 void FrontTracker::part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {

@@ -137,10 +137,8 @@ bool HazardMaps::animationFrameDue(double time) const {
 }
 
 void HazardMaps::Impl::setUnits(const Simulation& sim, const PartBounds& b) {
-  double invRho = 0;
-  for (const auto* g : sim.groups()) invRho = std::max(invRho, 1.0 / g->density());
-  const double bound[kSums] = {b.maxMass * invRho, b.maxMass, b.maxMass * std::sqrt(b.maxSpeed2), b.maxMass * b.maxSpeed2};
-  for (int k = 0; k < kSums; ++k) unit[k] = unitExponent(bound[k], kUnitBits);
+  const double bound[kSums] = {volumeBound(sim, b), b.maxMass, b.maxMass * std::sqrt(b.maxSpeed2), b.maxMass * b.maxSpeed2};
+  for (int k = 0; k < kSums; ++k) unit[k] = unitExponent(bound[k], kCellBits);
 }
 
 void HazardMaps::Impl::binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed) {

@@ -14,8 +14,6 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr int kMaxima = 4; // MaxHeightVertical .. MaxPressure
 constexpr int kSums = 4;   // per cell during a step: volume, mass, mass*speed, mass*speed^2
 
-constexpr int kUnitBits = 40; // a particle's largest value in units (io/output/step_parts.h)
-
 /// One particle's bilinear splat: first column, offsets in cells, and the summed quantities in
 /// units of 2^unit[k] (exactly scaled floats; each cell sums them as rounded integers).
 struct Splat {

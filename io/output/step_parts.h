@@ -11,6 +11,7 @@
 
 #include "engine/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -34,6 +35,18 @@ inline int unitExponent(double bound, int bits) {
   int e;
   std::frexp(bound, &e); // bound < 2^e
   return e - bits;
+}
+
+/// Bits of the largest particle's value: kCellBits where many particles add up in one int64 (a
+/// map cell, a path's bin: 2^23 of the largest fit), kTotalBits where each particle is an int64
+/// and the sum 128 bits (a series total).
+constexpr int kCellBits = 40, kTotalBits = 62;
+
+/// The largest particle volume (m^3) `b` allows: its largest mass over the least dense material.
+inline double volumeBound(const Simulation& sim, const PartBounds& b) {
+  double invRho = 0;
+  for (const auto* g : sim.groups()) invRho = std::max(invRho, 1.0 / g->density());
+  return b.maxMass * invRho;
 }
 
 /// 2^e as a double; multiplying by it is exact (no libm call in the loops).

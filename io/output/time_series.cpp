@@ -123,11 +123,10 @@ private:
     int e[3];
   };
   static Units unitsOf(const Simulation& sim, const PartBounds& b) {
-    constexpr int kBits = 62; // a particle's value fits an int64; 2^65 of them fit the sum
     const Vec3d g = sim.settings().gravity;
     const double gSum = std::abs(g.x()) + std::abs(g.y()) + std::abs(g.z());
-    return {{unitExponent(b.maxMass, kBits), unitExponent(0.5 * b.maxMass * b.maxSpeed2, kBits),
-             unitExponent(b.maxMass * gSum * b.maxCoord, kBits)}};
+    return {{unitExponent(b.maxMass, kTotalBits), unitExponent(0.5 * b.maxMass * b.maxSpeed2, kTotalBits),
+             unitExponent(b.maxMass * gSum * b.maxCoord, kTotalBits)}};
   }
 
   std::vector<std::string> names_, covers_;

@@ -49,7 +49,7 @@ void WaterSurfaceMap::onStart(const Simulation& sim) {
 int WaterSurfaceMap::volumeUnit(const Simulation& sim, const PartBounds& b) const {
   double invRho = 0;
   for (size_t g : water_) invRho = std::max(invRho, 1.0 / sim.groups()[g]->density());
-  return unitExponent(b.maxMass * invRho, 40); // 2^23 of the largest particles fit a cell's int64
+  return unitExponent(b.maxMass * invRho, kCellBits); // the water alone
 }
 
 void WaterSurfaceMap::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
