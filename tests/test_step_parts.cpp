@@ -10,7 +10,11 @@
 #include "two_slabs.h"
 #include "water_flume.h"
 
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <gtest/gtest.h>
 
 using namespace talus;
@@ -80,6 +84,75 @@ TEST(StepParts, MapsFromAlternateParticlesInTwoPartsAreOneProcesssBitForBit) {
       EXPECT_EQ(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)), 0) << HazardMaps::stem(HazardMaps::Quantity(q));
       EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.f) << "a map that stayed empty tests nothing";
     }
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(StepParts, MapsByOwnerAtTwoRanksWithAFilmAreOneProcesssBitForBit) {
+  // Two ranks as Run::stepOutputsOnRanks drives them: each sums its particles, sends the cells
+  // of the other's rows and folds its own; rank 0 gathers the film's frames and, at the end,
+  // the other's maxima. Rank 1 never holds rank 0's rows: no process adds every cell.
+  auto sim = test::makeSimulation(test::kSlabs, kFalling);
+  auto even = test::makeSimulation(test::kSlabs, kFalling), odd = test::makeSimulation(test::kSlabs, kFalling);
+  const std::string dirOne = test::tempDir("step_parts_owner_one"), dirRanks = test::tempDir("step_parts_owner_ranks");
+  auto filmed = [&](const std::string& dir) {
+    return test::slabMaps(*sim, dir, [](MapSettings& ms) { ms.animation.enabled = true, ms.animation.interval = 0.004; });
+  };
+  const auto maps1 = filmed(dirOne), maps0 = filmed(dirRanks), maps1r = filmed(dirRanks);
+  HazardMaps &one = *maps1, &rank0 = *maps0, &rank1 = *maps1r;
+  one.onStart(*sim);
+  rank0.onStart(*sim);
+  rank1.prepareParts(*sim);
+  ASSERT_TRUE(rank0.partsByOwner()) << "no terrain: every cell's slope is known at the start";
+  int frames = 0;
+  for (int i = 0; i < 20; ++i) {
+    const double dt = sim->step();
+    one.onStep(*sim, dt);
+    ASSERT_TRUE(rank0.partDue(*sim));
+    keepAlternate(*sim, *even, 0);
+    keepAlternate(*sim, *odd, 1);
+    const PartBounds b = mergedBounds(*even, *odd);
+    std::vector<std::vector<char>> from0(2), from1(2);
+    rank0.partByOwner(*even, b, 0, from0);
+    rank1.partByOwner(*odd, b, 1, from1);
+    EXPECT_TRUE(from0[0].empty() && from1[1].empty()) << "each keeps its own cells in place";
+    rank0.onStepParts(*sim, dt, b, {view(from0[0]), view(from1[0])});
+    rank1.onStepParts(*sim, dt, b, {view(from0[1]), view(from1[1])});
+    ASSERT_EQ(rank0.resultDue(), rank1.resultDue()) << "rank 1 learns the film's clock from rank 0's part";
+    if (!rank0.resultDue()) continue;
+    std::vector<char> result;
+    rank1.ownedResult(false, result);
+    rank0.mergeResults(*sim, false, {view(result)});
+    ++frames;
+  }
+  EXPECT_GE(frames, 3);
+  const int nx = rank1.grid().nx; // the domain's grid: the window is the whole grid
+  const auto own1 = rank1.raster(HazardMaps::MaxHeightVertical);
+  size_t rank1Rows = 0;
+  for (size_t c = 0; c < own1.size(); ++c) {
+    if (!(own1[c] > 0)) continue;
+    EXPECT_EQ(OutputObserver::ownerOfRow(int(c / size_t(nx)), 2), 1) << "cell " << c << " is rank 0's";
+    ++rank1Rows;
+  }
+  EXPECT_GT(rank1Rows, 0u);
+  std::vector<char> state;
+  rank1.ownedResult(true, state);
+  rank0.mergeResults(*sim, true, {view(state)});
+  for (int layer = 0; layer < 3; ++layer)
+    for (int q = 0; q < HazardMaps::Deposit; ++q) {
+      const auto a = one.raster(HazardMaps::Quantity(q), layer), c = rank0.raster(HazardMaps::Quantity(q), layer);
+      EXPECT_EQ(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)), 0) << HazardMaps::stem(HazardMaps::Quantity(q));
+    }
+  size_t compared = 0; // the frames' rasters (a step longer than the interval skips an index)
+  for (const auto& e : std::filesystem::directory_iterator(dirOne + "/animation/rasters")) {
+    const std::string name = "/animation/rasters/" + e.path().filename().string();
+    EXPECT_TRUE(fileBytes(dirOne + name) == fileBytes(dirRanks + name)) << name << " differs";
+    ++compared;
+  }
+  EXPECT_GE(compared, size_t(frames)) << "every frame's rasters";
 }
 
 TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {

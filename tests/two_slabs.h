@@ -5,13 +5,17 @@
 
 #include "io/output/hazard_maps.h"
 
+#include <functional>
+
 namespace talus::test {
 
 /// Per-material maps over `sim`'s domain on 0.15 m cells (no DEM), made in `dir`.
-inline std::unique_ptr<HazardMaps> slabMaps(const Simulation& sim, const std::string& dir) {
+inline std::unique_ptr<HazardMaps> slabMaps(const Simulation& sim, const std::string& dir,
+                                            const std::function<void(MapSettings&)>& edit = {}) {
   MapSettings ms;
   ms.enabled = true;
   ms.perMaterial = true;
+  if (edit) edit(ms);
   RunContext run;
   run.origin = sim.settings().origin;
   run.domainMin = sim.settings().domain.min, run.domainMax = sim.settings().domain.max;

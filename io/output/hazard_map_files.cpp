@@ -202,4 +202,60 @@ std::vector<float> HazardMaps::raster(Quantity q, int layer) const {
   return out;
 }
 
+// What rank 0 gathers of the cells every process folds (partsByOwner): a film frame's rasters
+// and, before a checkpoint or the end's files, the maxima.
+
+bool HazardMaps::resultDue() const { return impl_->framePending; }
+
+// A result: per cell its index, then its floats (the frame's thickness and speed, or every
+// layer's maxima), only for cells with a non-zero value (rank 0's are zero or a lower maximum).
+void HazardMaps::ownedResult(bool state, std::vector<char>& out) {
+  Impl& m = *impl_;
+  const size_t n = m.cells, floats = state ? size_t(m.layers) * kMaxima : 2;
+  std::vector<float> v(floats);
+  for (uint32_t cell = 0; cell < n; ++cell) {
+    bool any = false;
+    for (size_t i = 0; i < floats; ++i) {
+      const size_t l = i / kMaxima, q = i % kMaxima;
+      v[i] = !state ? (i ? m.frameSpeed[cell] : m.frameThickness[cell]) : m.maxima[l][q * n + cell];
+      any |= v[i] != 0;
+    }
+    if (!any) continue;
+    PartWriter w(out);
+    w.put(cell);
+    for (float f : v) w.put(f);
+  }
+  if (!state) m.framePending = false;
+}
+
+void HazardMaps::mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& others) {
+  Impl& m = *impl_;
+  const size_t n = m.cells, floats = state ? size_t(m.layers) * kMaxima : 2;
+  for (std::string_view part : others) {
+    if (part.size() % (sizeof(uint32_t) + floats * sizeof(float)))
+      throw std::runtime_error("hazard maps: a result does not hold whole cells");
+    PartReader r(part);
+    while (!r.done()) {
+      const auto cell = r.get<uint32_t>();
+      if (cell >= n) throw std::runtime_error("hazard maps: a result names a cell outside the map");
+      for (size_t i = 0; i < floats; ++i) {
+        const float f = r.get<float>();
+        const size_t l = i / kMaxima, q = i % kMaxima;
+        if (state) m.maxima[l][q * n + cell] = std::max(m.maxima[l][q * n + cell], f);
+        else (i ? m.frameSpeed : m.frameThickness)[cell] = f;
+      }
+    }
+  }
+  if (!state && m.framePending) writeFrame(sim.time());
+}
+
+void HazardMaps::writeFrame(double time) {
+  Impl& m = *impl_;
+  for (const auto& f : writeAnimationFrame(outDir_, m.animationNext, time, m.window, m.frameThickness, m.frameSpeed))
+    recordFile(f);
+  // Steps longer than the interval skip frames rather than repeat one.
+  m.animationNext = int(std::floor(time / settings_.animation.interval + 1e-9)) + 1;
+  m.framePending = false;
+}
+
 } // namespace talus

@@ -81,39 +81,45 @@ void HazardMaps::prepareParts(const Simulation& sim) {
     for (const auto* g : groups) m.layerMaterial.push_back(g->name());
   m.sums.assign(size_t(m.layers), std::vector<int64_t>(kSums * m.cells, 0));
   m.mark.assign(m.cells, 0);
+  // Every process folds its own cells into the maxima (partsByOwner), with the slope under them.
+  m.maxima.assign(size_t(m.layers), std::vector<float>(kMaxima * m.cells, 0.f));
+  m.cosSlope.assign(m.cells, kNaN);
+
+  // Cosines known everywhere before the run (a DEM's, or none without terrain) let every process
+  // fold its own cells; the terrain SDF's are found on demand, where rank 0 folds every cell.
+  if (dem_) m.slopeFromDem(grid_, *dem_);
+  else if (!m.terrain) std::fill(m.cosSlope.begin(), m.cosSlope.end(), 1.f);
+  m.slopeKnown = dem_ || !m.terrain;
+}
+
+void HazardMaps::Impl::slopeFromDem(const RasterGrid& grid, const DemRaster& dem) {
+  // Central differences, one-sided next to missing cells.
+  const auto& z = dem.height;
+  const double cs = grid.cellSize;
+  for (int r = 0; r < window.ny; ++r)
+    for (int c = 0; c < window.nx; ++c) {
+      const int gc = c0 + c, gr = r0 + r;
+      auto at = [&](int cc, int rr) -> double {
+        if (cc < 0 || rr < 0 || cc >= grid.nx || rr >= grid.ny) return NAN;
+        return z[grid.index(cc, rr)];
+      };
+      const double h = at(gc, gr);
+      double e = at(gc + 1, gr), w = at(gc - 1, gr), n = at(gc, gr - 1), s = at(gc, gr + 1);
+      double sx = 2 * cs, sy = 2 * cs;
+      if (!std::isfinite(e)) e = h, sx -= cs;
+      if (!std::isfinite(w)) w = h, sx -= cs;
+      if (!std::isfinite(n)) n = h, sy -= cs;
+      if (!std::isfinite(s)) s = h, sy -= cs;
+      const double zx = sx > 0 && std::isfinite(h) ? (e - w) / sx : 0;
+      const double zy = sy > 0 && std::isfinite(h) ? (n - s) / sy : 0;
+      cosSlope[size_t(r) * window.nx + c] = float(1 / std::sqrt(1 + zx * zx + zy * zy));
+    }
 }
 
 void HazardMaps::onStart(const Simulation& sim) {
   prepareParts(sim);
   Impl& m = *impl_;
   const auto& groups = sim.groups();
-  const double cs = grid_.cellSize;
-  m.maxima.assign(size_t(m.layers), std::vector<float>(kMaxima * m.cells, 0.f));
-  m.cosSlope.assign(m.cells, kNaN);
-
-  if (dem_) {
-    // Slope from the DEM itself: central differences, one-sided next to missing cells.
-    const auto& z = dem_->height;
-    for (int r = 0; r < m.window.ny; ++r)
-      for (int c = 0; c < m.window.nx; ++c) {
-        const int gc = m.c0 + c, gr = m.r0 + r;
-        auto at = [&](int cc, int rr) -> double {
-          if (cc < 0 || rr < 0 || cc >= grid_.nx || rr >= grid_.ny) return NAN;
-          return z[grid_.index(cc, rr)];
-        };
-        const double h = at(gc, gr);
-        double e = at(gc + 1, gr), w = at(gc - 1, gr), n = at(gc, gr - 1), s = at(gc, gr + 1);
-        double sx = 2 * cs, sy = 2 * cs;
-        if (!std::isfinite(e)) e = h, sx -= cs;
-        if (!std::isfinite(w)) w = h, sx -= cs;
-        if (!std::isfinite(n)) n = h, sy -= cs;
-        if (!std::isfinite(s)) s = h, sy -= cs;
-        const double zx = sx > 0 && std::isfinite(h) ? (e - w) / sx : 0;
-        const double zy = sy > 0 && std::isfinite(h) ? (n - s) / sy : 0;
-        m.cosSlope[size_t(r) * m.window.nx + c] = float(1 / std::sqrt(1 + zx * zx + zy * zy));
-      }
-  }
-
   m.erodibleGroup.assign(groups.size(), 0);
   for (size_t g = 0; g < groups.size(); ++g)
     for (const auto& n : settings_.erodible)
@@ -128,7 +134,9 @@ void HazardMaps::onStep(const Simulation& sim, double dt) {
 }
 
 bool HazardMaps::partDue(const Simulation& sim) const {
-  return sim.time() - impl_->lastTime + 1e-12 >= settings_.interval || animationFrameDue(sim.time());
+  // Rank 0 tells the others in its parts whether this accumulation makes a film frame.
+  impl_->frameDue = animationFrameDue(sim.time());
+  return sim.time() - impl_->lastTime + 1e-12 >= settings_.interval || impl_->frameDue;
 }
 
 bool HazardMaps::animationFrameDue(double time) const {
@@ -247,20 +255,37 @@ void HazardMaps::Impl::sumBands(const Simulation& sim, const std::vector<uint8_t
 }
 
 // A part: the touched cells' indices, then each cell's kSums * layers sums, cell by cell.
-void HazardMaps::Impl::writeTouched(std::vector<char>& out) {
-  const size_t n = touched.size(), row = sizeof(int64_t) * kSums, at0 = out.size();
-  out.resize(at0 + n * (sizeof(uint32_t) + row * size_t(layers - firstLayer())));
-  std::memcpy(out.data() + at0, touched.data(), n * sizeof(uint32_t));
-  char* at = out.data() + at0 + n * sizeof(uint32_t);
+void HazardMaps::Impl::writeTouched(std::vector<char>* outs, int ranks, int self) {
+  const size_t row = sizeof(int64_t) * kSums, record = row * size_t(layers - firstLayer());
+  auto ownerOf = [&](uint32_t cell) { return OutputObserver::ownerOfRow(int(cell / uint32_t(window.nx)), ranks); };
+  const size_t n = size_t(ranks);
+  std::vector<size_t> count(n, 0), index(n, 0), data(n, 0);
+  for (uint32_t cell : touched) ++count[size_t(ownerOf(cell))];
+  for (int r = 0; r < ranks; ++r) {
+    if (r == self) continue;
+    std::vector<char>& out = outs[r];
+    index[size_t(r)] = out.size();
+    data[size_t(r)] = out.size() + count[size_t(r)] * sizeof(uint32_t);
+    out.resize(data[size_t(r)] + count[size_t(r)] * record);
+  }
+  size_t kept = 0;
   for (uint32_t cell : touched) {
-    for (int l = firstLayer(); l < layers; ++l, at += row) {
+    const int r = ownerOf(cell);
+    if (r == self) {
+      touched[kept++] = cell;
+      continue;
+    }
+    char* out = outs[r].data();
+    std::memcpy(out + index[size_t(r)], &cell, sizeof cell);
+    index[size_t(r)] += sizeof cell;
+    for (int l = firstLayer(); l < layers; ++l, data[size_t(r)] += row) {
       int64_t* s = sums[size_t(l)].data() + kSums * cell;
-      std::memcpy(at, s, row);
+      std::memcpy(out + data[size_t(r)], s, row);
       std::fill_n(s, kSums, 0);
     }
     mark[cell] = 0;
   }
-  touched.clear();
+  touched.resize(kept);
 }
 
 void HazardMaps::Impl::addPart(std::string_view part) {
@@ -314,24 +339,48 @@ void HazardMaps::Impl::thickness(const Simulation& sim, const std::vector<uint8_
   });
 }
 
+bool HazardMaps::partsByOwner() const { return impl_->slopeKnown; }
+
+// Every part starts with one byte: whether rank 0 records a film frame from this accumulation
+// (only rank 0 knows the film's clock; the others learn it from its part).
 void HazardMaps::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
   Impl& m = *impl_;
+  m.sumOwn(local, b, float(settings_.minSpeed));
+  if (keep) return; // the sums stay, and onStepParts adds the others to them
+  out.push_back(char(m.frameDue)); // read by no one: rank 0 merges these parts
+  m.writeTouched(&out, 1, -1);
+}
+
+void HazardMaps::partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) {
+  Impl& m = *impl_;
+  m.self = self;
+  m.sumOwn(local, b, float(settings_.minSpeed));
+  const char frame = char(self == 0 && m.frameDue);
+  for (int r = 0; r < int(outs.size()); ++r)
+    if (r != self) outs[size_t(r)].push_back(frame);
+  m.writeTouched(outs.data(), int(outs.size()), self);
+}
+
+void HazardMaps::Impl::sumOwn(const Simulation& local, const PartBounds& b, float minSpeed) {
   const std::vector<uint8_t> all(local.groups().size(), 1);
-  m.setUnits(local, b);
-  m.binSplats(local, all, float(settings_.minSpeed)); // moving material only, when min_speed is set
-  m.sumBands(local, all);
-  if (!keep) m.writeTouched(out); // else the sums stay, and onStepParts adds the others to them
+  setUnits(local, b);
+  binSplats(local, all, minSpeed); // moving material only, when min_speed is set
+  sumBands(local, all);
 }
 
 void HazardMaps::onStepParts(const Simulation& sim, double, const PartBounds& b,
                              const std::vector<std::string_view>& parts) {
   // Every part's cells are summed as integers, so each cell's sum is the same whatever the split
   // of the particles into parts (ranks) and bands (threads): maps are bit-identical at any
-  // number of either. Each cell is then folded into the maxima on its own, in parallel.
+  // number of either. Each cell is then folded into the maxima on its own, in parallel; by
+  // owner, each process folds its own cells (a maximum is the same over any split of the steps).
   if (parts.empty()) return;
   Impl& m = *impl_;
   m.setUnits(sim, b);
-  for (const auto& p : parts) m.addPart(p);
+  const bool fromRoot = m.self != 0 && !parts[0].empty();
+  m.framePending = m.self == 0 ? animationFrameDue(sim.time()) : fromRoot && parts[0][0];
+  for (const auto& p : parts)
+    if (!p.empty()) m.addPart(p.substr(1));
   m.lastTime = sim.time();
   m.endTime = sim.time();
   ++accumulations_;
@@ -339,7 +388,7 @@ void HazardMaps::onStepParts(const Simulation& sim, double, const PartBounds& b,
   const float minH = float(settings_.minHeight);
   const size_t n = m.cells;
   // An animation frame records this accumulation's thickness and speed of all material.
-  const bool frame = animationFrameDue(sim.time());
+  const bool frame = m.framePending;
   if (frame) m.frameThickness.assign(n, 0.f), m.frameSpeed.assign(n, 0.f);
   m.foldTouched([&](uint32_t cell, const float* all) {
     if (frame) {
@@ -360,12 +409,6 @@ void HazardMaps::onStepParts(const Simulation& sim, double, const PartBounds& b,
       }
     }
   });
-  if (frame) {
-    for (const auto& f : writeAnimationFrame(outDir_, m.animationNext, sim.time(), m.window, m.frameThickness, m.frameSpeed))
-      recordFile(f);
-    // Steps longer than the interval skip frames rather than repeat one.
-    m.animationNext = int(std::floor(sim.time() / settings_.animation.interval + 1e-9)) + 1;
-  }
 }
 
 } // namespace talus

@@ -54,6 +54,11 @@ public:
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
   void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                    const std::vector<std::string_view>& parts) override;
+  bool partsByOwner() const override;
+  void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) override;
+  bool resultDue() const override;
+  void ownedResult(bool state, std::vector<char>& out) override;
+  void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& others) override;
   void onFinish(const Simulation& sim, bool completed) override;
   void save(StateArchive& a, const std::string& prefix) const override;
   void load(const StateArchive& a, const std::string& prefix) override;
@@ -76,6 +81,7 @@ public:
 
 private:
   bool animationFrameDue(double time) const;
+  void writeFrame(double time); ///< rank 0: the film frame of the accumulation just folded
   void makeFilm();
   std::string animationOutcome_;
   struct Impl;

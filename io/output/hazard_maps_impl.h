@@ -38,13 +38,19 @@ struct HazardMaps::Impl {
   std::vector<std::vector<float>> deposit, erosion, initial, start; ///< [layer][cell]; initial: erodible only
   std::vector<uint8_t> erodibleGroup;
   std::vector<float> cosSlope; ///< NaN until known
+  bool slopeKnown = false;     ///< cosSlope is whole from the start (a DEM, or no terrain)
+  /// cosSlope of every cell from the DEM's heights on `grid` (the map grid).
+  void slopeFromDem(const RasterGrid& grid, const DemRaster& dem);
   std::vector<uint8_t> mark; ///< cell has sums this accumulation
   std::vector<std::vector<uint32_t>> rowStart; ///< per group: first splat of each first splat row
   std::vector<std::vector<Splat>> splats;      ///< per group: splats by first row, particle order within a row
   std::vector<int32_t> rowOf;                  ///< scratch: first splat row + 1 per particle, -1 outside
   double a = 1, bx = 0, by = 0; ///< window cell coordinates: fx = a x + bx, fy = -a y + by (local x, y)
   double lastTime = -std::numeric_limits<double>::infinity();
-  int animationNext = 0;                         ///< index of the next animation frame
+  int animationNext = 0;                         ///< index of the next animation frame (rank 0)
+  int self = 0;              ///< this process's rank (partByOwner); 0 in one process
+  bool framePending = false; ///< this accumulation records a film frame (resultDue)
+  bool frameDue = false;     ///< rank 0: the frame partDue found due, for its parts to the others
   std::vector<float> frameThickness, frameSpeed; ///< that frame's rasters while it is recorded
   double endTime = 0;
   std::shared_ptr<const Sdf> terrain;
@@ -58,12 +64,15 @@ struct HazardMaps::Impl {
   /// sequence (a gather through a particle index missed the cache on most of them).
   /// Only particles at least `minSpeed` fast (m/s) are splatted when it is positive.
   void binSplats(const Simulation& sim, const std::vector<uint8_t>& use, float minSpeed = 0);
+  /// The sums of `local`'s particles in the units of `b` (setUnits, binSplats, sumBands).
+  void sumOwn(const Simulation& local, const PartBounds& b, float minSpeed);
   /// Adds the binned splats into `sums` (bands of rows in parallel; integer sums, so exact in
   /// any order) and lists the cells touched in `touched`.
   void sumBands(const Simulation& sim, const std::vector<uint8_t>& use);
-  /// The touched cells' sums as a part (their indices, then kSums * layers integers each);
-  /// clears them.
-  void writeTouched(std::vector<char>& out);
+  /// The touched cells' sums as parts by owner (OutputObserver::ownerOfRow): outs[r] gets those
+  /// of the cells rank r of `ranks` owns (their indices, then kSums * layers integers each), and
+  /// clears them; those `self` owns stay in place and in `touched` (self -1: none).
+  void writeTouched(std::vector<char>* outs, int ranks, int self);
   /// Adds a part's cells into `sums` and `touched`.
   /// @throw std::runtime_error if the part does not hold whole cells of this map
   void addPart(std::string_view part);

@@ -50,12 +50,36 @@ public:
   virtual void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                            const std::vector<std::string_view>& parts) {}
 
+  /// Parts by owner: an output over map cells whose cells are owned by the ranks (a row each in
+  /// turn, ownerOfRow) returns true. Every process then folds the cells it owns: partByOwner()
+  /// replaces part(), and onStepParts() runs on every process with the parts of its own cells.
+  /// Rank 0 gathers the folded cells only when it writes them (results below), so no process
+  /// adds every cell of the map. One process owns every cell and runs the same calls.
+  virtual bool partsByOwner() const { return false; }
+  /// Row `row`'s owner among `ranks` processes: rows in turn, so a flow's rows spread evenly.
+  static int ownerOfRow(int row, int ranks) { return row % ranks; }
+  /// This process's part for every other process r (appended to outs[r]; outs.size() is the
+  /// number of processes). Its own cells' sums stay in place for its onStepParts.
+  virtual void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) {}
+  /// After onStepParts, on every process alike: whether rank 0 needs this step's folded cells
+  /// (a film frame), sent by results(false).
+  virtual bool resultDue() const { return false; }
+  /// On a process other than rank 0: its owned cells' results, appended to `out`: the step's
+  /// (state false, when resultDue) or the state accumulated so far (true: before rank 0 writes
+  /// a checkpoint or the end's files).
+  virtual void ownedResult(bool state, std::vector<char>& out) {}
+  /// On rank 0: the other processes' results (rank order, from rank 1); with `state` false it
+  /// writes what was due (one process calls it with none).
+  /// @throw std::runtime_error if a result does not hold whole cells of this output
+  virtual void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& others) {}
+
   /// onStep of an output in parts in one process: its own part, merged alone.
   void stepOwnPart(const Simulation& sim, double dt) {
     std::vector<char> own;
     const PartBounds b = PartBounds::of(sim);
     part(sim, b, true, own);
     onStepParts(sim, dt, b, {std::string_view(own.data(), own.size())});
+    if (resultDue()) mergeResults(sim, false, {});
   }
 
   /// Checkpointing: the state accumulated since the start (maxima, rows, pending volumes), so a

@@ -87,10 +87,11 @@ void OutputSet::step(const Simulation& sim) {
   const double dt = stepTime(sim);
   const uint32_t due = partsDue(sim);
   const PartBounds b = due ? PartBounds::of(sim) : PartBounds{};
-  const std::vector<char> mine = parts(sim, due, b);
+  const std::vector<std::vector<char>> mine = parts(sim, due, b, 0, 1);
   std::vector<std::string_view> buffers;
-  if (due) buffers.emplace_back(mine.data(), mine.size());
+  if (due) buffers.emplace_back(mine[0].data(), mine[0].size());
   mergeParts(sim, dt, due, b, buffers);
+  mergeResults(sim, false, {}, 1);
   stepWhole(sim, dt);
 }
 
@@ -107,28 +108,86 @@ uint32_t OutputSet::partsDue(const Simulation& sim) const {
   return due;
 }
 
-std::vector<char> OutputSet::parts(const Simulation& local, uint32_t due, const PartBounds& b) {
-  std::vector<char> buffer;
+namespace {
+/// Appends a part after its length, written in place once `write` has appended the part.
+struct SizedParts {
+  std::vector<std::vector<char>>& to;
+  std::vector<size_t> at;
+  explicit SizedParts(std::vector<std::vector<char>>& buffers) : to(buffers), at(buffers.size()) {}
+  void open(size_t r) {
+    at[r] = to[r].size();
+    PartWriter(to[r]).put(uint64_t(0));
+  }
+  void close(size_t r) {
+    const uint64_t n = to[r].size() - at[r] - sizeof n;
+    std::memcpy(to[r].data() + at[r], &n, sizeof n);
+  }
+};
+} // namespace
+
+std::vector<std::vector<char>> OutputSet::parts(const Simulation& local, uint32_t due, const PartBounds& b, int self,
+                                                int ranks) {
+  std::vector<std::vector<char>> buffers(static_cast<size_t>(ranks));
+  SizedParts sized(buffers);
   eachInParts([&](OutputObserver& o, size_t k) {
     if (!(due >> k & 1)) return;
-    // Each part after its length, written in place once the part is.
-    const size_t at = buffer.size();
-    PartWriter(buffer).put(uint64_t(0));
-    o.part(local, b, root_, buffer);
-    const uint64_t n = buffer.size() - at - sizeof n;
-    std::memcpy(buffer.data() + at, &n, sizeof n);
+    if (byOwner(o, ranks)) { // a part for every process (its own kept in place)
+      for (size_t r = 0; r < buffers.size(); ++r) sized.open(r);
+      o.partByOwner(local, b, self, buffers);
+      for (size_t r = 0; r < buffers.size(); ++r) sized.close(r);
+    } else { // rank 0's
+      sized.open(0);
+      o.part(local, b, self == 0, buffers[0]);
+      sized.close(0);
+    }
   });
-  return buffer;
+  return buffers;
 }
 
 void OutputSet::mergeParts(const Simulation& sim, double dt, uint32_t due, const PartBounds& b,
                            const std::vector<std::string_view>& buffers) {
   std::vector<std::string_view> rest = buffers;
+  const int ranks = int(buffers.size());
   eachInParts([&](OutputObserver& o, size_t k) {
+    const bool owned = byOwner(o, ranks);
+    if (!root_ && !owned) return; // made on rank 0 alone
     std::vector<std::string_view> mine;
     if (due >> k & 1)
       for (auto& r : rest) mine.push_back(takeSized(r));
     o.onStepParts(sim, dt, b, mine);
+  });
+}
+
+bool OutputSet::byOwner(const OutputObserver& o, int ranks) const { return ranks > 1 && o.partsByOwner(); }
+
+bool OutputSet::resultsDue(int ranks) const {
+  bool due = false;
+  for (const auto& out : outputs_) due |= out->stepsInParts() && byOwner(*out, ranks) && out->resultDue();
+  return due;
+}
+
+std::vector<char> OutputSet::results(bool state, int ranks) {
+  std::vector<std::vector<char>> buffer(1);
+  SizedParts sized(buffer);
+  eachInParts([&](OutputObserver& o, size_t) {
+    if (!byOwner(o, ranks) || !(state || o.resultDue())) return;
+    sized.open(0);
+    o.ownedResult(state, buffer[0]);
+    sized.close(0);
+  });
+  return std::move(buffer[0]);
+}
+
+void OutputSet::mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& buffers, int ranks) {
+  // Rank 0's own buffer (the first) is empty: its cells are in place.
+  std::vector<std::string_view> rest(buffers.begin() + std::min<size_t>(1, buffers.size()), buffers.end());
+  eachInParts([&](OutputObserver& o, size_t) {
+    const bool owned = byOwner(o, ranks);
+    if (state ? !owned : !o.resultDue()) return;
+    std::vector<std::string_view> others;
+    if (owned)
+      for (auto& r : rest) others.push_back(takeSized(r));
+    o.mergeResults(sim, state, others);
   });
 }
 

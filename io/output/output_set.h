@@ -38,14 +38,26 @@ public:
   /// previous step (as step()), and which outputs in parts are due (bit i: the i-th of them).
   double stepTime(const Simulation& sim);
   uint32_t partsDue(const Simulation& sim) const;
-  /// Every process: its parts of the due outputs from its own particles, as one buffer.
-  std::vector<char> parts(const Simulation& local, uint32_t due, const PartBounds& b);
-  /// Rank 0: the step of the outputs in parts from every process's buffer (rank order; none
-  /// when nothing was due), then of the outputs that read every particle, from `whole` (rank
-  /// 0's gathered copy; null when readsWholeEachStep() is false).
+  /// Every process (`self` of `ranks`): its parts of the due outputs from its own particles, one
+  /// buffer per process to send them to: rank 0 gets every output's, the others those of the
+  /// outputs by owner (OutputObserver::partsByOwner).
+  std::vector<std::vector<char>> parts(const Simulation& local, uint32_t due, const PartBounds& b, int self, int ranks);
+  /// Every process: the step of the outputs in parts from the buffers every process sent it
+  /// (rank order; none when nothing was due); rank 0 steps them all, the others those by owner.
   /// @throw std::runtime_error if a buffer does not hold the due parts
   void mergeParts(const Simulation& sim, double dt, uint32_t due, const PartBounds& b,
                   const std::vector<std::string_view>& buffers);
+  /// After mergeParts, the same on every process: whether rank 0 needs the outputs by owner's
+  /// folded cells of this step (a film frame), which it then gathers from results(false).
+  bool resultsDue(int ranks) const;
+  /// A process other than rank 0: its owned cells' results of the outputs by owner, the step's
+  /// or (state) all they accumulated, as one buffer for rank 0.
+  std::vector<char> results(bool state, int ranks);
+  /// Rank 0: merges every process's results buffer (rank order; rank 0's own empty) and writes
+  /// what was due this step (with none, what its own outputs hold: one process, or no owners).
+  /// Before a checkpoint or the end, with `state`, after a gather of results(true).
+  /// @throw std::runtime_error if a buffer does not hold the results
+  void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& buffers, int ranks);
   void stepWhole(const Simulation& whole, double dt);
   /// Whether some output reads every particle after every step (the same on every process).
   bool readsWholeEachStep() const { return readsWhole_; }
@@ -65,6 +77,8 @@ private:
   void addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir);
   template <class F> void each(F&& f);
   template <class F> void eachInParts(F&& f);
+  /// Whether `o` steps by owner among `ranks` processes (one process owns everything).
+  bool byOwner(const OutputObserver& o, int ranks) const;
   std::vector<std::unique_ptr<OutputObserver>> outputs_;
   bool readsWhole_ = false;
   bool root_ = true; ///< merges the parts (rank 0, or one process): keeps its own in place

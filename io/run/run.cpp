@@ -24,6 +24,13 @@ namespace talus {
 namespace fs = std::filesystem;
 
 namespace {
+/// The ranks' buffers in one gathered block, `counts` bytes each (none when nothing was gathered).
+std::vector<std::string_view> views(const std::vector<char>& all, const std::vector<size_t>& counts) {
+  std::vector<std::string_view> v;
+  for (size_t r = 0, at = 0; r < counts.size(); at += counts[r++]) v.emplace_back(all.data() + at, counts[r]);
+  return v;
+}
+
 /// Creating a folder fails like writing a file (full, read-only, removed): report it as one.
 void makeDirectories(const std::string& dir) {
   std::error_code ec;
@@ -207,26 +214,46 @@ void Run::stepOutputsOnRanks() {
   comm.minimum(v, 4);
   const uint32_t due = uint32_t(-v[0]);
   const PartBounds b{-v[1], -v[2], -v[3]};
-  std::vector<char> all;
-  std::vector<size_t> counts;
-  if (due) all = comm.gather(out.parts(*sim_, due, b), counts);
+  // One all-to-all: rank 0 gets every part; the maps' cells go to the process owning them, so
+  // no process adds every cell (OutputObserver::partsByOwner).
+  const int n = comm.size();
+  std::vector<std::vector<char>> sent = due ? out.parts(*sim_, due, b, comm.rank(), n) : std::vector<std::vector<char>>();
+  const std::vector<std::vector<char>> got = due ? comm.exchange(sent) : std::vector<std::vector<char>>();
   // Only what reads every particle still needs them gathered (positions, velocities, masses).
   if (out.readsWholeEachStep()) sim_->gatherInto(s.viewed.get(), Simulation::GatherScope::Kinematics);
+  // Not the collectives: their time includes waiting for slower ranks.
+  const auto o0 = std::chrono::steady_clock::now();
+  std::vector<std::string_view> buffers;
+  for (const auto& g : got) buffers.emplace_back(g.data(), g.size());
+  out.mergeParts(*sim_, dt, due, b, buffers);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count();
+  // Rank 0 gathers the owned cells only when it writes them (a film frame).
+  std::vector<char> results;
+  std::vector<size_t> counts;
+  if (out.resultsDue(n)) results = comm.gather(root ? std::vector<char>() : out.results(false, n), counts);
   s.ranks.onRoot([&] {
-    // Not the collectives: their time includes waiting for slower ranks.
-    const auto o0 = std::chrono::steady_clock::now();
-    std::vector<std::string_view> buffers;
-    for (size_t r = 0, at = 0; r < counts.size(); at += counts[r++]) buffers.emplace_back(all.data() + at, counts[r]);
-    out.mergeParts(*sim_, dt, due, b, buffers);
+    const auto o1 = std::chrono::steady_clock::now();
+    out.mergeResults(*sim_, false, views(results, counts), n);
     if (out.readsWholeEachStep()) out.stepWhole(*s.view, dt);
-    s.balance.addOutputSeconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - o1).count();
+    s.balance.addOutputSeconds(seconds);
   });
+}
+
+void Run::gatherOutputState() {
+  State& s = *s_;
+  if (!s.ranks.active() || !s.outputs) return;
+  Communicator& comm = s.ranks.comm();
+  std::vector<size_t> counts;
+  const std::vector<char> all = comm.gather(s.ranks.root() ? std::vector<char>() : s.outputs->results(true, comm.size()), counts);
+  s.ranks.onRoot([&] { s.outputs->mergeResults(*s.view, true, views(all, counts), comm.size()); });
 }
 
 void Run::checkpoint() {
   State& s = *s_;
   guarded([&] {
     if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    gatherOutputState();
     s.ranks.onRoot([&] {
       writeCheckpoint(s.checkpointFile, *s.view, s.identity, [&](StateArchive& a) {
         s.outputs->save(a);
@@ -255,6 +282,7 @@ void Run::finish() {
   const bool interrupted = res_.status == RunStatus::Interrupted;
   if (!interrupted) {
     if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    gatherOutputState();
     s.ranks.onRoot([&] {
       s.outputs->finish(*s.view, res_.status == RunStatus::Completed);
       if (res_.status == RunStatus::Completed)

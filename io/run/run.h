@@ -49,8 +49,12 @@ public:
 private:
   struct State;
   void afterStep();
-  /// The per-step outputs under ranks: parts reduced to rank 0, then what reads every particle.
+  /// The per-step outputs under ranks: parts exchanged (the maps' cells to their owners, the
+  /// rest to rank 0), then what reads every particle.
   void stepOutputsOnRanks();
+  /// Under ranks, before rank 0 writes a checkpoint or the end's files: the state of the cells
+  /// the other processes own (OutputObserver::partsByOwner), gathered into rank 0's outputs.
+  void gatherOutputState();
   void finish();
   template <class F> void guarded(F&& f);
   void writeFailed(const std::string& what);

@@ -23,8 +23,14 @@ CELL_BYTES = 4 + 32 * 2        # two materials' layers
 PARTICLES_PER_CELL = 13        # particles per touched map cell per step: the default scene on 2
                                # ranks, rank 1's 33 313 particles sent 91 KB of parts a step
                                # (36 bytes a cell, one layer), against a run without maps
-MERGE_NS_PER_CELL = 30         # rank 0's adding and folding per cell received: assumed, not
-                               # measured alone (a copy, 4-8 integer adds and a few maxima)
+MERGE_NS_PER_CELL = 30         # adding and folding per cell received: assumed, not measured
+                               # alone (a copy, 4-8 integer adds and a few maxima)
+# Since: cells owned by ranks (OutputObserver::partsByOwner): each rank sends every touched cell
+# to the rank owning its row (rows in turn) and adds and folds the rows it owns; rank 0 gathers
+# them only for a film frame, a checkpoint and the end. The adding of received cells is serial
+# per rank, the folding parallel over its threads (taken here as a third of the 30 ns and the
+# rest); a rank's patch spans more rows than there are ranks, so it sends to every rank.
+ADD_SHARE = 1 / 3
 NETWORKS = {"10 Gb/s Ethernet": (30e-6, 1.25e9), "100 Gb/s InfiniBand": (2e-6, 12.5e9)}
 
 
@@ -59,15 +65,24 @@ def main():
         c, m, _ = step(1.25e6 * ranks, ranks, 16, alpha, beta) if ranks > 1 else (1.25e6 / (RATE_PER_CORE * 16 * PARALLEL_EFF), 0, 0)
         print(f"  {ranks:4d} ranks: step {1e3 * (c + m):.2f} ms, efficiency {100 * c / (c + m):.1f} %")
     print()
-    print("Per-step outputs of `talus run` in parts (20 M particles, 100 ranks of 16 threads):")
+    ranks, threads = 100, 16
+    print(f"Per-step outputs of `talus run` in parts (20 M particles, {ranks} ranks of {threads} threads):")
     cells = n_total / PARTICLES_PER_CELL
-    c, _, _ = step(n_total, 100, 16, *NETWORKS["100 Gb/s InfiniBand"])
     for net, (alpha, beta) in NETWORKS.items():
+        c, _, _ = step(n_total, ranks, threads, alpha, beta)
         recv = cells * CELL_BYTES / beta
         merge = cells * MERGE_NS_PER_CELL * 1e-9
-        print(f"  {net}: {cells * CELL_BYTES / 1e6:.1f} MB of parts per step into rank 0: {1e3 * recv:.2f} ms, "
-              f"its adding {1e3 * merge:.2f} ms, against the engine's {1e3 * c:.2f} ms step: "
+        print(f"  {net}, all to rank 0 (before): {cells * CELL_BYTES / 1e6:.1f} MB of parts per step into rank 0: "
+              f"{1e3 * recv:.2f} ms, its adding {1e3 * merge:.2f} ms, against the engine's {1e3 * c:.2f} ms step: "
               f"+{100 * (recv + merge) / c:.0f} %")
+        own = cells / ranks
+        latency = ranks * alpha
+        wire = own * CELL_BYTES / beta
+        add = own * MERGE_NS_PER_CELL * 1e-9 * (ADD_SHARE + (1 - ADD_SHARE) / (threads * PARALLEL_EFF))
+        total = latency + wire + add
+        print(f"  {net}, cells owned by ranks: {own * CELL_BYTES / 1e6:.2f} MB per rank per step, "
+              f"{ranks} messages {1e3 * latency:.2f} ms + bytes {1e3 * wire:.3f} ms + adding and folding "
+              f"{1e3 * add:.3f} ms = {1e3 * total:.2f} ms: +{100 * total / c:.0f} %")
 
 if __name__ == "__main__":
     main()
