@@ -10,6 +10,7 @@
 #include "two_slabs.h"
 #include "water_flume.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -59,6 +60,35 @@ size_t stepInTwoParts(OutputObserver& parts, const Simulation& sim, Simulation& 
   parts.part(even, b, true, kept);
   parts.onStepParts(sim, dt, b, {view(kept), view(sent)});
   return sent.size();
+}
+
+/// One step of an output by owner as two ranks take it (Run::stepOutputsOnRanks): `sim`'s
+/// alternate particles in `even` (rank 0's) and `odd` (rank 1's), each sending the other's rows
+/// and folding its own; rank 0 then gathers rank 1's result when one is due. Returns whether it was.
+bool stepByOwnerInTwo(OutputObserver& rank0, OutputObserver& rank1, const Simulation& sim, Simulation& even,
+                      Simulation& odd, double dt) {
+  keepAlternate(sim, even, 0);
+  keepAlternate(sim, odd, 1);
+  const PartBounds b = mergedBounds(even, odd);
+  std::vector<std::vector<char>> from0(2), from1(2);
+  rank0.partByOwner(even, b, 0, from0);
+  rank1.partByOwner(odd, b, 1, from1);
+  EXPECT_TRUE(from0[0].empty() && from1[1].empty()) << "each keeps its own cells in place";
+  rank0.onStepParts(sim, dt, b, {view(from0[0]), view(from1[0])});
+  rank1.onStepParts(sim, dt, b, {view(from0[1]), view(from1[1])});
+  EXPECT_EQ(rank0.resultDue(), rank1.resultDue()) << "rank 1 learns the film's clock from rank 0's part";
+  if (!rank0.resultDue()) return false;
+  std::vector<char> result;
+  rank1.ownedResult(false, result);
+  rank0.mergeResults(sim, false, {view(result)});
+  return true;
+}
+
+/// Before rank 0 writes: rank 1's state merged into rank 0's.
+void gatherState(OutputObserver& rank0, OutputObserver& rank1, const Simulation& sim) {
+  std::vector<char> state;
+  rank1.ownedResult(true, state);
+  rank0.mergeResults(sim, true, {view(state)});
 }
 
 } // namespace
@@ -112,21 +142,7 @@ TEST(StepParts, MapsByOwnerAtTwoRanksWithAFilmAreOneProcesssBitForBit) {
     const double dt = sim->step();
     one.onStep(*sim, dt);
     ASSERT_TRUE(rank0.partDue(*sim));
-    keepAlternate(*sim, *even, 0);
-    keepAlternate(*sim, *odd, 1);
-    const PartBounds b = mergedBounds(*even, *odd);
-    std::vector<std::vector<char>> from0(2), from1(2);
-    rank0.partByOwner(*even, b, 0, from0);
-    rank1.partByOwner(*odd, b, 1, from1);
-    EXPECT_TRUE(from0[0].empty() && from1[1].empty()) << "each keeps its own cells in place";
-    rank0.onStepParts(*sim, dt, b, {view(from0[0]), view(from1[0])});
-    rank1.onStepParts(*sim, dt, b, {view(from0[1]), view(from1[1])});
-    ASSERT_EQ(rank0.resultDue(), rank1.resultDue()) << "rank 1 learns the film's clock from rank 0's part";
-    if (!rank0.resultDue()) continue;
-    std::vector<char> result;
-    rank1.ownedResult(false, result);
-    rank0.mergeResults(*sim, false, {view(result)});
-    ++frames;
+    frames += stepByOwnerInTwo(rank0, rank1, *sim, *even, *odd, dt);
   }
   EXPECT_GE(frames, 3);
   const int nx = rank1.grid().nx; // the domain's grid: the window is the whole grid
@@ -138,9 +154,7 @@ TEST(StepParts, MapsByOwnerAtTwoRanksWithAFilmAreOneProcesssBitForBit) {
     ++rank1Rows;
   }
   EXPECT_GT(rank1Rows, 0u);
-  std::vector<char> state;
-  rank1.ownedResult(true, state);
-  rank0.mergeResults(*sim, true, {view(state)});
+  gatherState(rank0, rank1, *sim);
   for (int layer = 0; layer < 3; ++layer)
     for (int q = 0; q < HazardMaps::Deposit; ++q) {
       const auto a = one.raster(HazardMaps::Quantity(q), layer), c = rank0.raster(HazardMaps::Quantity(q), layer);
@@ -220,4 +234,41 @@ TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) 
   ASSERT_EQ(a.size(), c.size());
   EXPECT_EQ(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)), 0);
   EXPECT_GT(std::count_if(a.begin(), a.end(), [](float z) { return z > 0.3f; }), 0) << "the column's surface";
+}
+
+TEST(StepParts, RunUpMapByOwnerAtTwoRanksIsOneProcesssBitForBit) {
+  // As above, the cells going to the rank owning their row; rank 1 never holds rank 0's rows.
+  const std::string flume = test::kWaterFlumeScene;
+  auto sim = test::makeSimulation(flume);
+  auto even = test::makeSimulation(flume), odd = test::makeSimulation(flume);
+  RunContext run;
+  run.origin = sim->settings().origin;
+  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
+  const RasterGrid grid = HazardMaps::domainGrid(run, 0.04);
+  const std::string dir = test::tempDir("step_parts_runup_owner");
+  WaterSurfaceMap one(dir, grid, nullptr, {}, 0.02, false), rank0(dir, grid, nullptr, {}, 0.02, false),
+      rank1(dir, grid, nullptr, {}, 0.02, false);
+  one.onStart(*sim);
+  rank0.onStart(*sim);
+  rank1.prepareParts(*sim);
+  for (int i = 0; i < 120; ++i) { // the front crosses cells its column did not cover
+    const double dt = sim->step();
+    one.onStep(*sim, dt);
+    EXPECT_FALSE(stepByOwnerInTwo(rank0, rank1, *sim, *even, *odd, dt)) << "the run-up map writes nothing before the end";
+  }
+  const auto own1 = rank1.maxSurface();
+  size_t wet = 0;
+  for (size_t c = 0; c < own1.size(); ++c)
+    if (!std::isnan(own1[c])) {
+      EXPECT_EQ(OutputObserver::ownerOfRow(int(c / size_t(grid.nx)), 2), 1) << "cell " << c << " is rank 0's";
+      ++wet;
+    }
+  EXPECT_GT(wet, 0u) << "the flume is four rows wide at 4 cm: rank 1 owns two";
+  const auto before = rank0.maxSurface(), whole = one.maxSurface();
+  EXPECT_NE(std::memcmp(before.data(), whole.data(), whole.size() * sizeof(float)), 0)
+      << "rank 0 lacks rank 1's rows wetted since the start until it gathers them: else this tests nothing";
+  gatherState(rank0, rank1, *sim);
+  const auto a = one.maxSurface(), c = rank0.maxSurface();
+  ASSERT_EQ(a.size(), c.size());
+  EXPECT_EQ(std::memcmp(a.data(), c.data(), a.size() * sizeof(float)), 0);
 }

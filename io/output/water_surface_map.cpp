@@ -37,6 +37,7 @@ void WaterSurfaceMap::prepareParts(const Simulation& sim) {
   originZ_ = st.origin.z();
   volume_.assign(window_.size(), 0);
   bottom_.assign(window_.size(), std::numeric_limits<float>::infinity());
+  max_.assign(window_.size(), kNaN); // each process's own rows (partsByOwner); rank 0's from the start
 }
 
 void WaterSurfaceMap::onStart(const Simulation& sim) {
@@ -52,7 +53,7 @@ int WaterSurfaceMap::volumeUnit(const Simulation& sim, const PartBounds& b) cons
   return unitExponent(b.maxMass * invRho, kCellBits); // the water alone
 }
 
-void WaterSurfaceMap::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
+void WaterSurfaceMap::sumOwn(const Simulation& local, const PartBounds& b) {
   const Vec3d& o = local.settings().origin;
   const double inv = 1 / window_.cellSize, perUnit = powerOfTwo(-volumeUnit(local, b));
   // Fixed-point volumes and the lowest particle per cell: exact in any order and any split.
@@ -69,13 +70,53 @@ void WaterSurfaceMap::part(const Simulation& local, const PartBounds& b, bool ke
       bottom_[cell] = std::min(bottom_[cell], float(double(P.x[p].z()) - 0.5 * spacing_));
     }
   }
-  if (keep) return; // onStepParts adds the others' cells to these
-  PartWriter put(out);
+}
+
+void WaterSurfaceMap::part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) {
+  sumOwn(local, b);
+  if (!keep) writeTouched(&out, 1, -1); // else onStepParts adds the others' cells to these
+}
+
+void WaterSurfaceMap::partByOwner(const Simulation& local, const PartBounds& b, int self,
+                                  std::vector<std::vector<char>>& outs) {
+  if (water_.empty()) return;
+  sumOwn(local, b);
+  writeTouched(outs.data(), int(outs.size()), self);
+}
+
+void WaterSurfaceMap::writeTouched(std::vector<char>* outs, int ranks, int self) {
+  size_t kept = 0;
   for (uint32_t cell : touched_) {
+    const int r = ownerOfRow(int(cell / uint32_t(window_.nx)), ranks);
+    if (r == self) {
+      touched_[kept++] = cell;
+      continue;
+    }
+    PartWriter put(outs[r]);
     put.put(cell), put.put(volume_[cell]), put.put(bottom_[cell]);
     volume_[cell] = 0, bottom_[cell] = std::numeric_limits<float>::infinity();
   }
-  touched_.clear();
+  touched_.resize(kept);
+}
+
+void WaterSurfaceMap::ownedResult(bool state, std::vector<char>& out) {
+  if (!state) return; // nothing is written during the run
+  PartWriter put(out);
+  for (uint32_t cell = 0; cell < uint32_t(max_.size()); ++cell)
+    if (!std::isnan(max_[cell])) put.put(cell), put.put(max_[cell]);
+}
+
+void WaterSurfaceMap::mergeResults(const Simulation&, bool state, const std::vector<std::string_view>& others) {
+  if (!state) return;
+  for (const auto& p : others) {
+    PartReader get(p);
+    while (!get.done()) {
+      const uint32_t cell = get.get<uint32_t>();
+      if (cell >= max_.size()) throw std::runtime_error("run-up map: a result names a cell outside the map");
+      const float z = get.get<float>();
+      if (!(max_[cell] >= z)) max_[cell] = z; // the highest over every process's steps
+    }
+  }
 }
 
 std::vector<uint32_t> WaterSurfaceMap::mergeParts(const Simulation& sim, const PartBounds& b,

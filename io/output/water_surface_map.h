@@ -53,7 +53,17 @@ public:
   std::vector<float> rise() const;
   const RasterGrid& grid() const { return grid_; }
 
+  bool partsByOwner() const override { return true; }
+  void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) override;
+  void ownedResult(bool state, std::vector<char>& out) override;
+  void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& others) override;
+
 private:
+  /// Sums `local`'s water into the scratch (volume_, bottom_, touched_) in the units of `b`.
+  void sumOwn(const Simulation& local, const PartBounds& b);
+  /// The touched cells owned by rank r of `ranks` as outs[r]'s part, cleared from the scratch;
+  /// those `self` owns stay (self -1: none).
+  void writeTouched(std::vector<char>* outs, int ranks, int self);
   /// The water surface of every window cell now (NaN where dry).
   void surfaces(const Simulation& sim, std::vector<float>& out);
   /// Adds the parts' cells to this process's kept one, and the surface of every cell touched;
