@@ -84,6 +84,20 @@ bool stepByOwnerInTwo(OutputObserver& rank0, OutputObserver& rank1, const Simula
   return true;
 }
 
+/// The water flume for the run-up map: the whole run and two ranks' shares of it.
+struct Flume {
+  std::unique_ptr<Simulation> sim = test::makeSimulation(test::kWaterFlumeScene);
+  std::unique_ptr<Simulation> even = test::makeSimulation(test::kWaterFlumeScene);
+  std::unique_ptr<Simulation> odd = test::makeSimulation(test::kWaterFlumeScene);
+  /// Map cells of `cell` metres over the flume's domain.
+  RasterGrid grid(double cell) const {
+    RunContext run;
+    run.origin = sim->settings().origin;
+    run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
+    return HazardMaps::domainGrid(run, cell);
+  }
+};
+
 /// Before rank 0 writes: rank 1's state merged into rank 0's.
 void gatherState(OutputObserver& rank0, OutputObserver& rank1, const Simulation& sim) {
   std::vector<char> state;
@@ -213,13 +227,9 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
 
 TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   // A water column collapsing along a flume: the surface per cell moves every step.
-  const std::string flume = test::kWaterFlumeScene;
-  auto sim = test::makeSimulation(flume);
-  auto even = test::makeSimulation(flume), odd = test::makeSimulation(flume);
-  RunContext run;
-  run.origin = sim->settings().origin;
-  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
-  const RasterGrid grid = HazardMaps::domainGrid(run, 0.08);
+  Flume f;
+  auto &sim = f.sim, &even = f.even, &odd = f.odd;
+  const RasterGrid grid = f.grid(0.08);
   const std::string dir = test::tempDir("step_parts_runup");
   WaterSurfaceMap one(dir, grid, nullptr, {}, 0.02, false), parts(dir, grid, nullptr, {}, 0.02, false);
   one.onStart(*sim);
@@ -238,13 +248,9 @@ TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) 
 
 TEST(StepParts, RunUpMapByOwnerAtTwoRanksIsOneProcesssBitForBit) {
   // As above, the cells going to the rank owning their row; rank 1 never holds rank 0's rows.
-  const std::string flume = test::kWaterFlumeScene;
-  auto sim = test::makeSimulation(flume);
-  auto even = test::makeSimulation(flume), odd = test::makeSimulation(flume);
-  RunContext run;
-  run.origin = sim->settings().origin;
-  run.domainMin = sim->settings().domain.min, run.domainMax = sim->settings().domain.max;
-  const RasterGrid grid = HazardMaps::domainGrid(run, 0.04);
+  Flume f;
+  auto &sim = f.sim, &even = f.even, &odd = f.odd;
+  const RasterGrid grid = f.grid(0.04);
   const std::string dir = test::tempDir("step_parts_runup_owner");
   WaterSurfaceMap one(dir, grid, nullptr, {}, 0.02, false), rank0(dir, grid, nullptr, {}, 0.02, false),
       rank1(dir, grid, nullptr, {}, 0.02, false);
