@@ -109,7 +109,8 @@ uint32_t OutputSet::partsDue(const Simulation& sim) const {
 }
 
 namespace {
-/// Appends a part after its length, written in place once `write` has appended the part.
+/// Parts after their lengths: open(r) appends a length to buffer r, close(r) writes it in place
+/// once the part is appended.
 struct SizedParts {
   std::vector<std::vector<char>>& to;
   std::vector<size_t> at;
