@@ -250,7 +250,7 @@ TEST(StepParts, RunUpMapByOwnerAtTwoRanksIsOneProcesssBitForBit) {
   // As above, the cells going to the rank owning their row; rank 1 never holds rank 0's rows.
   Flume f;
   auto &sim = f.sim, &even = f.even, &odd = f.odd;
-  const RasterGrid grid = f.grid(0.04);
+  const RasterGrid grid = f.grid(0.01); // 16 rows: rank 0 owns the first 8, rank 1 the others
   const std::string dir = test::tempDir("step_parts_runup_owner");
   WaterSurfaceMap one(dir, grid, nullptr, {}, 0.02, false), rank0(dir, grid, nullptr, {}, 0.02, false),
       rank1(dir, grid, nullptr, {}, 0.02, false);
@@ -269,7 +269,7 @@ TEST(StepParts, RunUpMapByOwnerAtTwoRanksIsOneProcesssBitForBit) {
       EXPECT_EQ(OutputObserver::ownerOfRow(int(c / size_t(grid.nx)), 2), 1) << "cell " << c << " is rank 0's";
       ++wet;
     }
-  EXPECT_GT(wet, 0u) << "the flume is four rows wide at 4 cm: rank 1 owns two";
+  EXPECT_GT(wet, 0u) << "rank 1 owns half the flume's width";
   const auto before = rank0.maxSurface(), whole = one.maxSurface();
   EXPECT_NE(std::memcmp(before.data(), whole.data(), whole.size() * sizeof(float)), 0)
       << "rank 0 lacks rank 1's rows wetted since the start until it gathers them: else this tests nothing";

@@ -50,14 +50,17 @@ public:
   virtual void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                            const std::vector<std::string_view>& parts) {}
 
-  /// Parts by owner: an output over map cells whose cells are owned by the ranks (a row each in
-  /// turn, ownerOfRow) returns true. Every process then folds the cells it owns: partByOwner()
+  /// Parts by owner: an output over map cells whose cells are owned by the ranks (bands of rows
+  /// in turn, ownerOfRow) returns true. Every process then folds the cells it owns: partByOwner()
   /// replaces part(), and onStepParts() runs on every process with the parts of its own cells.
   /// Rank 0 gathers the folded cells only when it writes them (results below), so no process
   /// adds every cell of the map. One process owns every cell and runs the same calls.
   virtual bool partsByOwner() const { return false; }
-  /// Row `row`'s owner among `ranks` processes: rows in turn, so a flow's rows spread evenly.
-  static int ownerOfRow(int row, int ranks) { return row % ranks; }
+  /// Row `row`'s owner among `ranks` processes: bands of kRowsPerOwner rows in turn, so a flow's
+  /// rows spread over the ranks while a rank's particles (a compact patch of blocks) touch the
+  /// rows of few owners: one message to each (docs/scaling.md, the model).
+  static constexpr int kRowsPerOwner = 8;
+  static int ownerOfRow(int row, int ranks) { return (row / kRowsPerOwner) % ranks; }
   /// This process's part for every other process r (appended to outs[r]; outs.size() is the
   /// number of processes). Its own cells' sums stay in place for its onStepParts.
   virtual void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) {}

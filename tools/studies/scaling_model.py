@@ -26,11 +26,14 @@ PARTICLES_PER_CELL = 13        # particles per touched map cell per step: the de
 MERGE_NS_PER_CELL = 30         # adding and folding per cell received: assumed, not measured
                                # alone (a copy, 4-8 integer adds and a few maxima)
 # Since: cells owned by ranks (OutputObserver::partsByOwner): each rank sends every touched cell
-# to the rank owning its row (rows in turn) and adds and folds the rows it owns; rank 0 gathers
-# them only for a film frame, a checkpoint and the end. The adding of received cells is serial
-# per rank, the folding parallel over its threads (taken here as a third of the 30 ns and the
-# rest); a rank's patch spans more rows than there are ranks, so it sends to every rank.
+# to the rank owning its row (bands of 8 rows in turn) and adds and folds the rows it owns; rank
+# 0 gathers them only for a film frame, a checkpoint and the end. The adding of received cells
+# is serial per rank, the folding parallel over its threads (taken here as a third of the 30 ns
+# and the rest). A rank's blocks are a range in the tree's order, a compact patch: its cells
+# span about sqrt(cells) rows, so it sends to sqrt(cells)/8 + 1 owners (at most every rank),
+# after an all-to-all of the byte counts (log2 of the ranks in latency).
 ADD_SHARE = 1 / 3
+ROWS_PER_OWNER = 8
 NETWORKS = {"10 Gb/s Ethernet": (30e-6, 1.25e9), "100 Gb/s InfiniBand": (2e-6, 12.5e9)}
 
 
@@ -76,12 +79,13 @@ def main():
               f"{1e3 * recv:.2f} ms, its adding {1e3 * merge:.2f} ms, against the engine's {1e3 * c:.2f} ms step: "
               f"+{100 * (recv + merge) / c:.0f} %")
         own = cells / ranks
-        latency = ranks * alpha
+        messages = min(ranks, math.ceil(math.sqrt(own) / ROWS_PER_OWNER) + 1)
+        latency = (messages + math.log2(ranks)) * alpha  # and the all-to-all of the byte counts
         wire = own * CELL_BYTES / beta
         add = own * MERGE_NS_PER_CELL * 1e-9 * (ADD_SHARE + (1 - ADD_SHARE) / (threads * PARALLEL_EFF))
         total = latency + wire + add
         print(f"  {net}, cells owned by ranks: {own * CELL_BYTES / 1e6:.2f} MB per rank per step, "
-              f"{ranks} messages {1e3 * latency:.2f} ms + bytes {1e3 * wire:.3f} ms + adding and folding "
+              f"{messages} messages {1e3 * latency:.2f} ms + bytes {1e3 * wire:.3f} ms + adding and folding "
               f"{1e3 * add:.3f} ms = {1e3 * total:.2f} ms: +{100 * total / c:.0f} %")
 
 if __name__ == "__main__":
