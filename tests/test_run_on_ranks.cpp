@@ -105,47 +105,60 @@ TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
 TEST(RunOnRanks, AnErodibleFieldsRunAtTwoRanksWritesOneProcesssFiles) {
   // A snow slab sliding down a 30-degree DEM over a 0.2 m cover (0.4 cells: a field, issue 40):
   // the erosion-depth map, the entrained-mass series and the particles the pools made are one
-  // process's at two ranks, and its checkpoint (written at two ranks) resumes at one.
+  // process's at two ranks, and its checkpoint (written at two ranks) resumes at one. Then over
+  // a 1 m cover (two cells: particles) listed in [output.maps] erodible, with AvaFrame's peak
+  // files, for 1 s: its entrained mass in the series and the mass log, in parts on the ranks.
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
   test::useTestTerrainCache();
-  const std::string dir = test::tempDir("ranks_erodible");
+  const std::string base = test::tempDir("ranks_erodible");
   constexpr double X0 = 2600000, Y0 = 1200000;
   writeDemGeoTiff(test::makeDem(80, 40, 0.5, X0, Y0, [](double x, double) { return 1000 - 0.57735 * (x - X0); }),
-                  dir + "/slope.tif");
+                  base + "/slope.tif");
   auto box = [&](double x0, double y0, double x1, double y1) {
     char b[160];
     std::snprintf(b, sizeof b, "[%.3f, %.3f, %.3f, %.3f]", X0 + x0, Y0 + y0, X0 + x1, Y0 + y1);
     return std::string(b);
   };
-  const std::string scene = dir + "/erodible.toml";
-  std::ofstream(scene) << "[simulation]\ndx = 0.5\nend_time = 2\n[terrain]\ndem = \"" + dir +
-                              "/slope.tif\"\nboundary = \"friction\"\nfriction = 0.2\n[[materials]]\nname = \"snow\"\n"
-                              "model = \"elastic\"\ndensity = 300\nyoungs_modulus = 1e6\n[[materials]]\nname = \"cover\"\n"
-                              "model = \"elastic\"\ndensity = 100\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"release\"\n"
-                              "kind = \"layer\"\nmaterial = \"snow\"\nthickness = 2\nbounds = " + box(4, 6, 8, 14) +
-                              "\n[[bodies]]\nname = \"cover\"\nkind = \"layer\"\nmaterial = \"cover\"\nthickness = 0.2\n"
-                              "thickness_direction = \"vertical\"\nerosion_energy = 200\nbounds = " + box(8.5, 5, 30, 15) +
-                              "\n[output]\nframe_interval = 0.5\ncheckpoint_interval = 0.4\nmaps = true\n";
-  std::string out;
-  ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
-  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/two", out), 0) << out;
-  expectSameFiles(dir + "/one", dir + "/two");
-  const std::string summary = bytes(dir + "/one/summary.json");
-  EXPECT_NE(summary.find("\"erodible_fields\""), std::string::npos) << "the cover was not made a field";
-  // The slab took part of the cover (the last column of series.csv's last row: entrained kg).
-  std::ifstream series(dir + "/one/series.csv");
-  std::string header, line, last;
-  std::getline(series, header);
-  while (std::getline(series, line)) last = line;
-  const size_t column = size_t(std::count(header.begin(), header.begin() + long(header.find("entrained_mass_kg_field_cover")), ','));
-  std::stringstream cells(last);
-  std::string cell;
-  for (size_t k = 0; k <= column; ++k) std::getline(cells, cell, ',');
-  EXPECT_GT(std::stod(cell), 100.0) << "too little entrained for the test to see the field's ranks";
-  EXPECT_TRUE(fs::exists(dir + "/two/maps/erosion_depth.tif"));
-  // The two ranks' last checkpoint (t = 1.6 s), resumed at one process, ends where one process did.
-  ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --resume " + dir + "/two", out), 0) << out;
-  expectSameFiles(dir + "/one", dir + "/two");
+  struct Cover {
+    std::string name, thickness, outputs, column, endTime;
+    double coverEnd; ///< m along x
+  };
+  for (const Cover& c : {Cover{"field", "0.2", "maps = true\n", "entrained_mass_kg_field_cover", "2", 30},
+                         Cover{"particles", "1.0", "peak_files = true\n[output.maps]\nerodible = [\"cover\"]\n",
+                               "entrained_mass_kg_cover", "1", 20}}) {
+    SCOPED_TRACE(c.name);
+    const std::string dir = base + "/" + c.name, scene = dir + "/erodible.toml";
+    fs::create_directories(dir);
+    std::ofstream(scene) << "[simulation]\ndx = 0.5\nend_time = " + c.endTime + "\n[terrain]\ndem = \"" + base +
+                                "/slope.tif\"\nboundary = \"friction\"\nfriction = 0.2\n[[materials]]\nname = \"snow\"\n"
+                                "model = \"elastic\"\ndensity = 300\nyoungs_modulus = 1e6\n[[materials]]\nname = \"cover\"\n"
+                                "model = \"elastic\"\ndensity = 100\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"release\"\n"
+                                "kind = \"layer\"\nmaterial = \"snow\"\nthickness = 2\nbounds = " + box(4, 6, 8, 14) +
+                                "\n[[bodies]]\nname = \"cover\"\nkind = \"layer\"\nmaterial = \"cover\"\nthickness = " +
+                                c.thickness + "\nthickness_direction = \"vertical\"\nerosion_energy = 200\nbounds = " +
+                                box(8.5, 5, c.coverEnd, 15) + "\n[output]\nframe_interval = 0.5\ncheckpoint_interval = 0.4\n" + c.outputs;
+    std::string out;
+    ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
+    ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --out " + dir + "/two", out), 0) << out;
+    expectSameFiles(dir + "/one", dir + "/two");
+    const std::string summary = bytes(dir + "/one/summary.json");
+    EXPECT_EQ(summary.find("\"erodible_fields\"") != std::string::npos, c.name == "field") << "the cover was made a field or not";
+    // The slab took part of the cover (series.csv's last row: entrained kg).
+    std::ifstream series(dir + "/one/series.csv");
+    std::string header, line, last;
+    std::getline(series, header);
+    while (std::getline(series, line)) last = line;
+    ASSERT_NE(header.find(c.column), std::string::npos) << header;
+    const size_t column = size_t(std::count(header.begin(), header.begin() + long(header.find(c.column)), ','));
+    std::stringstream cells(last);
+    std::string cell;
+    for (size_t k = 0; k <= column; ++k) std::getline(cells, cell, ',');
+    EXPECT_GT(std::stod(cell), 100.0) << "too little entrained for the test to see the cover's ranks";
+    EXPECT_TRUE(fs::exists(dir + "/two/maps/erosion_depth.tif"));
+    // The two ranks' last checkpoint (t = 1.6 s; 0.8 s), resumed at one process, ends where one process did.
+    ASSERT_EQ(test::runTalus("run " + scene + " --quiet --threads 1 --resume " + dir + "/two", out), 0) << out;
+    expectSameFiles(dir + "/one", dir + "/two");
+  }
 }
 
 TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {

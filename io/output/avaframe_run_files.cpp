@@ -43,22 +43,27 @@ void AvaFrameRunFiles::part(const Simulation& local, const PartBounds& b, bool, 
     for (Real m : g->particles.mass) units += toUnits(double(m), perUnit);
   }
   PartWriter(out).put(units);
+  if (!erodible_.empty()) entrained_.part(local, b, out); // the covers' columns after it
 }
 
 void AvaFrameRunFiles::onStepParts(const Simulation& sim, double, const PartBounds& b,
                                    const std::vector<std::string_view>& parts) {
   if (parts.empty()) return;
   __int128 units = 0;
-  for (const auto& p : parts) units += PartReader(p).get<__int128>();
+  std::vector<std::string_view> columns;
+  for (const auto& p : parts) {
+    units += PartReader(p).get<__int128>();
+    columns.push_back(p.substr(sizeof units));
+  }
   const double mass = double(units) * powerOfTwo(unitExponent(b.maxMass, kTotalBits));
+  std::vector<double> covers;
+  if (!erodible_.empty()) entrained_.sampleParts(sim, 0, b, columns, covers);
   // Rows on com1DFA's 0.1 s clock, each the state after the step that reaches it.
-  while (partDue(sim)) sample(sim, double(next_++) * kInterval, mass);
+  while (partDue(sim)) sample(sim, double(next_++) * kInterval, mass, covers);
 }
 
-void AvaFrameRunFiles::sample(const Simulation& sim, double t, double particleMass) {
+void AvaFrameRunFiles::sample(const Simulation& sim, double t, double particleMass, const std::vector<double>& covers) {
   double current = particleMass, entrained = 0;
-  std::vector<double> covers;
-  entrained_.sample(sim, 0, covers);
   for (double m : covers) entrained += m, current += m; // what a cover lost is in the flow
   if (const ErodibleBed* bed = sim.bed())
     for (size_t k = 0; k < bed->covers().size(); ++k) {

@@ -31,9 +31,9 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
-  /// In parts (the particles' mass, io/output/step_parts.h) unless a cover is erodible: its
-  /// entrained mass reads every particle.
-  bool stepsInParts() const override { return erodible_.empty(); }
+  /// In parts (the particles' mass and the erodible covers' columns, io/output/step_parts.h).
+  bool stepsInParts() const override { return true; }
+  void prepareParts(const Simulation& sim) override { entrained_.onStart(sim); }
   bool partDue(const Simulation& sim) const override;
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
   void onStepParts(const Simulation& sim, double dt, const PartBounds& b,
@@ -46,7 +46,8 @@ public:
   static constexpr double kInterval = 0.1;
 
 private:
-  void sample(const Simulation& sim, double t, double particleMass);
+  /// A row at `t` from the particles' mass and the covers' entrained mass (EntrainedMassColumns).
+  void sample(const Simulation& sim, double t, double particleMass, const std::vector<double>& covers);
   std::string configuration() const;
 
   std::string outDir_, simName_, simType_, sceneKeys_;

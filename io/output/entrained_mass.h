@@ -4,6 +4,8 @@
 // node columns (bilinear, spacing dx) now and V0 at the start. The erosion_depth map's measure
 // (initial minus present thickness where positive) integrated, sampled through the run. Covers
 // made erodible fields have their own column (entrained_mass_kg_<cover>, engine/erodible_bed.h).
+// In parts: each process splats its own particles as fixed-point volumes (io/output/step_parts.h)
+// and sends its columns at a row; rank 0 adds them per column, so V is the same at any rank count.
 #pragma once
 
 #include "io/output/series_columns.h"
@@ -20,12 +22,21 @@ public:
   void onStart(const Simulation& sim) override;
   bool any() const { return !groups_.empty(); }
   std::vector<std::string> header() const override;
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
+  Reads reads() const override { return Reads::Parts; }
+  /// Per erodible material: its count of columns, then (column, volume in units) sorted by column.
+  void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override;
+  void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
+                   const std::vector<std::string_view>& parts, std::vector<double>& row) override;
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
+    sampleOwnPart(sim, elapsed, row);
+  }
 
 private:
   using Columns = std::unordered_map<uint64_t, double>;
-  /// The volume of group g's particles per node column.
-  Columns volumes(const Simulation& sim, int g) const;
+  /// The volume (m^3) of each erodible group's particles per node column, from every process's part.
+  std::vector<Columns> volumesFrom(const Simulation& sim, const PartBounds& b,
+                                   const std::vector<std::string_view>& parts) const;
+  static int unit(const Simulation& sim, const PartBounds& b);
 
   std::vector<std::string> names_;
   std::vector<int> groups_;     ///< positions in sim.groups()

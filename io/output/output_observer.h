@@ -40,6 +40,14 @@ public:
   virtual bool stepsInParts() const { return false; }
   /// Before the run on processes other than rank 0: what part() needs (the scene, not particles).
   virtual void prepareParts(const Simulation& sim) {}
+  /// After every step, on every process with its own particles, before the parts: what an output
+  /// in parts must not miss between its parts (a section's crossings) is added up here, on the
+  /// process that holds the particles. One process calls it with all of them.
+  virtual void stepLocal(const Simulation& local, double dt) {}
+  /// Whether stepLocal keeps a running total on each process: under ranks, before rank 0 saves a
+  /// checkpoint or writes the end, the others hand it over with ownedResult(true) and rank 0 adds
+  /// it in mergeResults(true), as for the outputs by owner.
+  virtual bool accumulatesOnRanks() const { return false; }
   /// On rank 0, after a step: whether this step's parts are needed.
   virtual bool partDue(const Simulation& sim) const { return false; }
   /// This process's part from its own particles, appended to `out`; `b` holds every process's
@@ -69,7 +77,7 @@ public:
   virtual bool resultDue() const { return false; }
   /// On a process other than rank 0: its owned cells' results, appended to `out`: the step's
   /// (state false, when resultDue) or the state accumulated so far (true: before rank 0 writes
-  /// a checkpoint or the end's files).
+  /// a checkpoint or the end's files; an output that accumulatesOnRanks hands its totals over).
   virtual void ownedResult(bool state, std::vector<char>& out) {}
   /// On rank 0: the other processes' results (rank order, from rank 1); with `state` false it
   /// writes what was due (one process calls it with none).

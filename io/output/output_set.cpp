@@ -55,6 +55,7 @@ OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, 
                  outputs_.end());
   for (auto& out : outputs_) out->prepareParts(sim);
   seconds_.assign(outputs_.size(), 0.0);
+  lastTime_ = sim.time();
   root_ = false;
 }
 
@@ -85,6 +86,7 @@ void OutputSet::start(const Simulation& sim) {
 void OutputSet::step(const Simulation& sim) {
   // The same calls as under ranks, with this process's buffer the only one: the same bytes.
   const double dt = stepTime(sim);
+  stepLocal(sim, dt);
   const uint32_t due = partsDue(sim);
   const PartBounds b = due ? PartBounds::of(sim) : PartBounds{};
   const std::vector<std::vector<char>> mine = parts(sim, due, b, 0, 1);
@@ -99,6 +101,10 @@ double OutputSet::stepTime(const Simulation& sim) {
   const double dt = sim.time() - lastTime_;
   lastTime_ = sim.time();
   return dt;
+}
+
+void OutputSet::stepLocal(const Simulation& local, double dt) {
+  eachInParts([&](OutputObserver& o, size_t) { o.stepLocal(local, dt); });
 }
 
 uint32_t OutputSet::partsDue(const Simulation& sim) const {
@@ -167,11 +173,15 @@ bool OutputSet::resultsDue(int ranks) const {
   return due;
 }
 
+bool OutputSet::gathersState(const OutputObserver& o, int ranks) const {
+  return byOwner(o, ranks) || (ranks > 1 && o.accumulatesOnRanks());
+}
+
 std::vector<char> OutputSet::results(bool state, int ranks) {
   std::vector<std::vector<char>> buffer(1);
   SizedParts sized(buffer);
   eachInParts([&](OutputObserver& o, size_t) {
-    if (!byOwner(o, ranks) || !(state || o.resultDue())) return;
+    if (state ? !gathersState(o, ranks) : !(byOwner(o, ranks) && o.resultDue())) return;
     sized.open(0);
     o.ownedResult(state, buffer[0]);
     sized.close(0);
@@ -180,13 +190,13 @@ std::vector<char> OutputSet::results(bool state, int ranks) {
 }
 
 void OutputSet::mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& buffers, int ranks) {
-  // Rank 0's own buffer (the first) is empty: its cells are in place.
+  // Rank 0's own buffer (the first) is empty: its cells and totals are in place.
   std::vector<std::string_view> rest(buffers.begin() + std::min<size_t>(1, buffers.size()), buffers.end());
   eachInParts([&](OutputObserver& o, size_t) {
-    const bool owned = byOwner(o, ranks);
-    if (state ? !owned : !o.resultDue()) return;
+    const bool sent = state ? gathersState(o, ranks) : byOwner(o, ranks) && o.resultDue();
+    if (state ? !sent : !o.resultDue()) return;
     std::vector<std::string_view> others;
-    if (owned)
+    if (sent)
       for (auto& r : rest) others.push_back(takeSized(r));
     o.mergeResults(sim, state, others);
   });
@@ -207,8 +217,10 @@ void OutputSet::save(StateArchive& a) const {
   }
 }
 
+void OutputSet::loadClock(const StateArchive& a) { lastTime_ = a.getValue<double>("outputs/last_time"); }
+
 void OutputSet::load(const StateArchive& a) {
-  lastTime_ = a.getValue<double>("outputs/last_time");
+  loadClock(a);
   for (size_t i = 0; i < outputs_.size(); ++i) {
     const std::string prefix = "outputs/" + std::to_string(i) + "_" + outputs_[i]->name() + "/";
     outputs_[i]->load(a, prefix);

@@ -34,9 +34,11 @@ public:
   /// After each step in one process; the step size is the time since the previous call.
   void step(const Simulation& sim);
 
-  /// A step under ranks, in three calls (io/run/run.cpp). Rank 0: the step size since the
-  /// previous step (as step()), and which outputs in parts are due (bit i: the i-th of them).
+  /// A step under ranks, in several calls (io/run/run.cpp). Every process: the step size since
+  /// the previous step (as step()), then stepLocal with its own particles. Rank 0: which outputs
+  /// in parts are due (bit i: the i-th of them).
   double stepTime(const Simulation& sim);
+  void stepLocal(const Simulation& local, double dt);
   uint32_t partsDue(const Simulation& sim) const;
   /// Every process (`self` of `ranks`): its parts of the due outputs from its own particles, one
   /// buffer per process to send them to: rank 0 gets every output's, the others those of the
@@ -51,7 +53,8 @@ public:
   /// folded cells of this step (a film frame), which it then gathers from results(false).
   bool resultsDue(int ranks) const;
   /// A process other than rank 0: its owned cells' results of the outputs by owner, the step's
-  /// or (state) all they accumulated, as one buffer for rank 0.
+  /// or (state) all they accumulated with the running totals of those that accumulate on ranks
+  /// (handed over: they start again from zero), as one buffer for rank 0.
   std::vector<char> results(bool state, int ranks);
   /// Rank 0: merges every process's results buffer (rank order; rank 0's own empty) and writes
   /// what was due this step (with none, what its own outputs hold: one process, or no owners).
@@ -67,6 +70,8 @@ public:
   /// Checkpointing of every output's accumulated state (see OutputObserver::save).
   void save(StateArchive& a) const;
   void load(const StateArchive& a);
+  /// A resumed process other than rank 0: only the outputs' clock (its parts keep no state).
+  void loadClock(const StateArchive& a);
 
   /// Identifiers of the constructed outputs, in call order.
   std::vector<std::string> names() const;
@@ -79,6 +84,8 @@ private:
   template <class F> void eachInParts(F&& f);
   /// Whether `o` steps by owner among `ranks` processes (one process owns everything).
   bool byOwner(const OutputObserver& o, int ranks) const;
+  /// Whether rank 0 gathers `o`'s state from the others before it saves or ends.
+  bool gathersState(const OutputObserver& o, int ranks) const;
   std::vector<std::unique_ptr<OutputObserver>> outputs_;
   bool readsWhole_ = false;
   bool root_ = true; ///< merges the parts (rank 0, or one process): keeps its own in place

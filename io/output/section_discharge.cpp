@@ -1,5 +1,7 @@
 #include "io/output/section_discharge.h"
 
+#include <algorithm>
+#include <stdexcept>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -15,7 +17,14 @@ void SectionDischarge::onStart(const Simulation& sim) {
   zMax_ = spec_.zMax - o.z();
   materials_.clear();
   for (const auto* g : sim.groups()) materials_.push_back(g->name());
-  volume_.assign(materials_.size(), 0.0);
+  // The unit is the run's, not a step's (the totals add up over steps), fixed by the scene alone
+  // so every process and a resumed run count alike; 128 bits leave room for 2^65 such particles.
+  double heaviest = 0;
+  for (const auto* g : sim.groups()) heaviest = std::max(heaviest, g->density());
+  const double dx = sim.settings().dx;
+  unit_ = unitExponent(heaviest * dx * dx * dx, kTotalBits);
+  crossed_.assign(materials_.size(), 0);
+  sampled_.assign(materials_.size(), 0);
 }
 
 std::vector<std::string> SectionDischarge::header() const {
@@ -25,15 +34,16 @@ std::vector<std::string> SectionDischarge::header() const {
   return h;
 }
 
-void SectionDischarge::onStep(const Simulation& sim, double dt) {
-  const auto& groups = sim.groups();
+void SectionDischarge::stepLocal(const Simulation& local, double dt) {
+  const auto& groups = local.groups();
+  const double perUnit = powerOfTwo(-unit_);
   const size_t nseg = local_.size() - 1;
   for (size_t g = 0; g < groups.size(); ++g) {
     const ParticleSet& P = groups[g]->particles;
-    // Deterministic reduction: the same sum whatever the thread count.
-    const double crossed = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, P.size(), 4096), 0.0,
-        [&](const tbb::blocked_range<size_t>& r, double acc) {
+    // Whole units: the same sum in any order, so at any thread and rank count.
+    crossed_[g] += tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, P.size(), 4096), Sum(0),
+        [&](const tbb::blocked_range<size_t>& r, Sum acc) {
           for (size_t p = r.begin(); p != r.end(); ++p) {
             const Eigen::Vector2d p1(P.x[p][0], P.x[p][1]);
             const Eigen::Vector2d p0 = p1 - dt * Eigen::Vector2d(P.v[p][0], P.v[p][1]);
@@ -56,23 +66,58 @@ void SectionDischarge::onStep(const Simulation& sim, double dt) {
               if (z < zMin_ || z >= zMax_) continue;
               sign += s1 > 0 ? 1 : -1; // right -> left is positive
             }
-            if (sign) acc += sign * double(P.mass[p]);
+            if (sign) acc += sign * Sum(double(P.mass[p]) * perUnit);
           }
           return acc;
         },
-        std::plus<double>());
-    volume_[g] += crossed / groups[g]->density();
+        std::plus<Sum>());
   }
 }
 
-void SectionDischarge::sample(const Simulation&, double elapsed, std::vector<double>& row) {
-  double total = 0;
-  for (double& v : volume_) {
-    row.push_back(elapsed > 0 ? v / elapsed : 0.0);
-    total += elapsed > 0 ? v / elapsed : 0.0;
-    v = 0;
+void SectionDischarge::part(const Simulation&, const PartBounds&, std::vector<char>& out) const {
+  PartWriter put(out); // the totals, whatever the bounds: their unit is the run's
+  for (Sum c : crossed_) put.put(c);
+}
+
+void SectionDischarge::sampleParts(const Simulation& sim, double elapsed, const PartBounds&,
+                                   const std::vector<std::string_view>& parts, std::vector<double>& row) {
+  std::vector<Sum> total(crossed_.size(), 0);
+  for (const auto& p : parts) {
+    PartReader get(p);
+    for (Sum& t : total) t += get.get<Sum>();
   }
-  if (volume_.size() > 1) row.push_back(total);
+  double sum = 0;
+  for (size_t g = 0; g < total.size(); ++g) {
+    const double volume = double(total[g] - sampled_[g]) * powerOfTwo(unit_) / sim.groups()[g]->density();
+    const double q = elapsed > 0 ? volume / elapsed : 0.0;
+    row.push_back(q), sum += q;
+  }
+  if (total.size() > 1) row.push_back(sum);
+  sampled_ = total;
+}
+
+void SectionDischarge::handOver(std::vector<char>& out) {
+  PartWriter put(out);
+  for (Sum c : crossed_) put.put(c);
+  std::fill(crossed_.begin(), crossed_.end(), 0);
+}
+
+void SectionDischarge::takeOver(std::string_view in) {
+  PartReader get(in);
+  for (Sum& c : crossed_) c += get.get<Sum>();
+  if (!get.done()) throw std::runtime_error("section '" + spec_.name + "': another rank's totals hold other materials");
+}
+
+void SectionDischarge::save(StateArchive& a, const std::string& prefix) const {
+  a.putVector(prefix + "crossed", crossed_);
+  a.putVector(prefix + "sampled", sampled_);
+}
+
+void SectionDischarge::load(const StateArchive& a, const std::string& prefix) {
+  a.getVector(prefix + "crossed", crossed_);
+  a.getVector(prefix + "sampled", sampled_);
+  if (crossed_.size() != materials_.size() || sampled_.size() != materials_.size())
+    throw std::runtime_error("checkpoint: section '" + spec_.name + "' has other materials than the scene");
 }
 
 } // namespace talus

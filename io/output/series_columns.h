@@ -36,6 +36,18 @@ public:
                            const std::vector<std::string_view>& parts, std::vector<double>& row) {
     sample(sim, elapsed, row);
   }
+  /// Reads::Parts columns that must see every step, not only the sampled ones (a section's
+  /// crossings): after every step, on every process with its own particles (one process: all of
+  /// them), before any part. What it adds up stays on that process for its part().
+  virtual void stepLocal(const Simulation& local, double dt) {}
+  /// Whether stepLocal adds up a running total. Under ranks, before rank 0 saves a checkpoint or
+  /// writes the end, every other process hands its total over (handOver, then starting from
+  /// zero) and rank 0 adds it (takeOver): the sum over the processes is unchanged and rank 0's
+  /// save() holds all of it, so a run resumes at any rank count.
+  virtual bool accumulates() const { return false; }
+  virtual void handOver(std::vector<char>& out) {}
+  /// @throw std::runtime_error if `in` is not what handOver writes for this column
+  virtual void takeOver(std::string_view in) {}
   /// sample() of a Reads::Parts column: its own part, merged alone.
   void sampleOwnPart(const Simulation& sim, double elapsed, std::vector<double>& row) {
     std::vector<char> own;

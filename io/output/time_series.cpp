@@ -141,10 +141,7 @@ public:
   explicit WaterSurfaceColumns(std::vector<std::string> names) : names_(std::move(names)) {}
   void onStart(const Simulation& sim) override {
     // By index: rank 0 starts on its gathered copy and takes parts from its own groups.
-    water_.clear();
-    for (const MaterialGroup* w : waterGroups(sim, names_))
-      for (size_t i = 0; i < sim.groups().size(); ++i)
-        if (sim.groups()[i] == w) water_.push_back(i);
+    water_ = waterGroupIndices(sim, names_);
   }
   bool any() const { return !water_.empty(); }
   std::vector<std::string> header() const override { return {"max_water_surface_m"}; }
@@ -211,6 +208,33 @@ bool TimeSeries::stepsInParts() const {
   return true;
 }
 
+void TimeSeries::stepLocal(const Simulation& local, double dt) {
+  for (auto& c : columns_) c->stepLocal(local, dt);
+}
+
+bool TimeSeries::accumulatesOnRanks() const {
+  for (const auto& c : columns_)
+    if (c->accumulates()) return true;
+  return false;
+}
+
+void TimeSeries::ownedResult(bool state, std::vector<char>& out) {
+  if (!state) return; // nothing by owner
+  for (auto& c : columns_) {
+    if (!c->accumulates()) continue;
+    std::vector<char> p;
+    c->handOver(p);
+    putSized(out, p);
+  }
+}
+
+void TimeSeries::mergeResults(const Simulation&, bool state, const std::vector<std::string_view>& others) {
+  if (!state) return;
+  for (std::string_view rest : others)
+    for (auto& c : columns_)
+      if (c->accumulates()) c->takeOver(takeSized(rest));
+}
+
 bool TimeSeries::partDue(const Simulation& sim) const { return sim.time() >= nextSample_ - 1e-9 * interval_; }
 
 void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
@@ -268,6 +292,7 @@ void TimeSeries::load(const StateArchive& a, const std::string& prefix) {
 }
 
 void TimeSeries::onStep(const Simulation& sim, double dt) {
+  stepLocal(sim, dt); // every particle is here
   lastDt_ = dt;
   for (auto& c : columns_) c->onStep(sim, dt);
   if (sim.time() >= nextSample_ - 1e-9 * interval_) sample(sim);

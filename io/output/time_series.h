@@ -29,9 +29,13 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
-  /// In parts when no column reads the particles whole (sections, paths, probes, gauges and the
-  /// entrained mass of erodible materials do).
+  /// In parts when no column reads the particles whole (probes and the entrained mass of
+  /// erodible materials do).
   bool stepsInParts() const override;
+  void stepLocal(const Simulation& local, double dt) override;
+  bool accumulatesOnRanks() const override;
+  void ownedResult(bool state, std::vector<char>& out) override;
+  void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& others) override;
   void prepareParts(const Simulation& sim) override;
   bool partDue(const Simulation& sim) const override;
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;

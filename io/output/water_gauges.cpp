@@ -13,10 +13,12 @@ namespace {
 
 long long bucketKey(long long ix, long long iy) { return ix * 2654435761LL + iy; }
 
-/// Per gauge: the tent-weighted water volume (m, a depth) and the lowest particle (local z).
+/// Per gauge: the tent-weighted water volume (a depth, in the gauge's fixed-point unit) and the
+/// lowest particle (local z): an integer sum and a minimum, exact in any order.
 struct Reading {
-  std::vector<double> depth, zLow;
-  explicit Reading(size_t n = 0) : depth(n, 0.0), zLow(n, std::numeric_limits<double>::infinity()) {}
+  std::vector<__int128> depth;
+  std::vector<double> zLow;
+  explicit Reading(size_t n = 0) : depth(n, 0), zLow(n, std::numeric_limits<double>::infinity()) {}
   void add(const Reading& o) {
     for (size_t k = 0; k < depth.size(); ++k) depth[k] += o.depth[k], zLow[k] = std::min(zLow[k], o.zLow[k]);
   }
@@ -33,11 +35,19 @@ std::vector<const MaterialGroup*> waterGroups(const Simulation& sim, const std::
   return water;
 }
 
+std::vector<size_t> waterGroupIndices(const Simulation& sim, const std::vector<std::string>& names) {
+  std::vector<size_t> water;
+  for (const MaterialGroup* w : waterGroups(sim, names))
+    for (size_t i = 0; i < sim.groups().size(); ++i)
+      if (sim.groups()[i] == w) water.push_back(i);
+  return water;
+}
+
 WaterGauges::WaterGauges(std::vector<GaugeSpec> gauges, std::vector<std::string> waterMaterials, double particleSpacing)
     : gauges_(std::move(gauges)), waterMaterials_(std::move(waterMaterials)), spacing_(particleSpacing) {}
 
 void WaterGauges::onStart(const Simulation& sim) {
-  water_ = waterGroups(sim, waterMaterials_);
+  water_ = waterGroupIndices(sim, waterMaterials_);
   if (water_.empty())
     throw std::runtime_error("gauge '" + gauges_.front().name +
                              "': the scene has no water (a material of model \"water\", or one listed in "
@@ -67,15 +77,20 @@ std::vector<std::string> WaterGauges::header() const {
   return h;
 }
 
-std::vector<double> WaterGauges::surfaces(const Simulation& sim) const {
-  const Vec3d o = sim.settings().origin;
+int WaterGauges::unit(const Simulation& sim, const PartBounds& b, size_t k) const {
+  return unitExponent(volumeBound(sim, b) / (radius_[k] * radius_[k]), kTotalBits); // the largest weight is 1/r^2
+}
+
+void WaterGauges::part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {
+  const Vec3d o = local.settings().origin;
   const size_t n = gauges_.size();
+  std::vector<double> perUnit(n);
+  for (size_t k = 0; k < n; ++k) perUnit[k] = powerOfTwo(-unit(local, b, k));
   Reading total(n);
-  for (const MaterialGroup* g : water_) {
-    const ParticleSet& P = g->particles;
-    const double inverseDensity = 1 / g->density();
-    // Fixed chunks combined in a fixed tree: the same readings at any thread count.
-    const Reading part = tbb::parallel_deterministic_reduce(
+  for (size_t g : water_) {
+    const ParticleSet& P = local.groups()[g]->particles;
+    const double inverseDensity = 1 / local.groups()[g]->density();
+    total.add(tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, P.size(), 8192), Reading(n),
         [&](const tbb::blocked_range<size_t>& range, Reading acc) {
           for (size_t p = range.begin(); p != range.end(); ++p) {
@@ -88,26 +103,47 @@ std::vector<double> WaterGauges::surfaces(const Simulation& sim) const {
               const double wx = 1 - std::abs(x - (gauges_[k].point.x() - o.x())) / r;
               const double wy = 1 - std::abs(y - (gauges_[k].point.y() - o.y())) / r;
               if (wx <= 0 || wy <= 0) continue;
-              acc.depth[k] += wx * wy / (r * r) * double(P.mass[p]) * inverseDensity;
+              acc.depth[k] += toUnits(wx * wy / (r * r) * double(P.mass[p]) * inverseDensity, perUnit[k]);
               acc.zLow[k] = std::min(acc.zLow[k], double(P.x[p].z()));
             }
           }
           return acc;
         },
-        [](Reading a, const Reading& b) {
-          a.add(b);
+        [](Reading a, const Reading& c) {
+          a.add(c);
           return a;
-        });
-    total.add(part);
+        }));
   }
+  PartWriter put(out);
+  for (size_t k = 0; k < n; ++k) put.put(total.depth[k]), put.put(total.zLow[k]);
+}
+
+std::vector<double> WaterGauges::surfacesFrom(const Simulation& sim, const PartBounds& b,
+                                              const std::vector<std::string_view>& parts) const {
+  const size_t n = gauges_.size();
+  Reading total(n);
+  for (const auto& p : parts) {
+    PartReader get(p);
+    for (size_t k = 0; k < n; ++k) total.depth[k] += get.get<__int128>(), total.zLow[k] = std::min(total.zLow[k], get.get<double>());
+  }
+  const double oz = sim.settings().origin.z();
   std::vector<double> z(n, std::numeric_limits<double>::quiet_NaN());
   for (size_t k = 0; k < n; ++k)
-    if (std::isfinite(total.zLow[k])) z[k] = total.zLow[k] - 0.5 * spacing_ + total.depth[k] + o.z();
+    if (std::isfinite(total.zLow[k]))
+      z[k] = total.zLow[k] - 0.5 * spacing_ + double(total.depth[k]) * powerOfTwo(unit(sim, b, k)) + oz;
   return z;
 }
 
-void WaterGauges::sample(const Simulation& sim, double, std::vector<double>& row) {
-  const std::vector<double> z = surfaces(sim);
+std::vector<double> WaterGauges::surfaces(const Simulation& sim) const {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, own);
+  return surfacesFrom(sim, b, {std::string_view(own.data(), own.size())});
+}
+
+void WaterGauges::sampleParts(const Simulation& sim, double, const PartBounds& b,
+                              const std::vector<std::string_view>& parts, std::vector<double>& row) {
+  const std::vector<double> z = surfacesFrom(sim, b, parts);
   row.insert(row.end(), z.begin(), z.end());
 }
 

@@ -25,10 +25,7 @@ WaterSurfaceMap::WaterSurfaceMap(std::string outDir, RasterGrid grid, std::share
 
 void WaterSurfaceMap::prepareParts(const Simulation& sim) {
   // By index: rank 0 starts on its gathered copy and takes parts from its own groups.
-  water_.clear();
-  for (const MaterialGroup* w : waterGroups(sim, waterMaterials_))
-    for (size_t i = 0; i < sim.groups().size(); ++i)
-      if (sim.groups()[i] == w) water_.push_back(i);
+  water_ = waterGroupIndices(sim, waterMaterials_);
   if (water_.empty()) return;
   // The window: the cells of the grid the domain's xy extent touches (as the hazard maps').
   const auto& st = sim.settings();

@@ -104,7 +104,8 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
       // a run checkpointed at N ranks resumes at any M.
       readCheckpoint(s.checkpointFile, *sim_, s.identity, [&](const StateArchive& a) {
-        if (s.outputs && s.ranks.root()) s.outputs->load(a); // the others' parts keep no state
+        if (s.outputs && s.ranks.root()) s.outputs->load(a);
+        else if (s.outputs) s.outputs->loadClock(a); // the others' parts keep no state
         s.frame = a.getValue<int32_t>("driver/next_frame");
         s.nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
         // A resumed run may have another frame interval: its frames continue after this time.
@@ -208,7 +209,8 @@ void Run::stepOutputsOnRanks() {
   const bool root = s.ranks.root();
   // One reduction: which outputs rank 0 needs this step, and every rank's maxima (the units of
   // the parts' fixed-point sums).
-  const double dt = root ? out.stepTime(*sim_) : 0.0;
+  const double dt = out.stepTime(*sim_);
+  out.stepLocal(*sim_, dt);
   const PartBounds mine = PartBounds::of(*sim_);
   double v[4] = {root ? -double(out.partsDue(*sim_)) : 0.0, -mine.maxMass, -mine.maxSpeed2, -mine.maxCoord};
   comm.minimum(v, 4);
