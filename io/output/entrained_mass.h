@@ -15,21 +15,17 @@
 
 namespace talus {
 
-class EntrainedMassColumns final : public SeriesColumns {
+class EntrainedMassColumns final : public PartsColumns {
 public:
   /// `materials`: the erodible materials' names; those absent from the scene are ignored.
   explicit EntrainedMassColumns(std::vector<std::string> materials) : names_(std::move(materials)) {}
   void onStart(const Simulation& sim) override;
   bool any() const { return !groups_.empty(); }
   std::vector<std::string> header() const override;
-  Reads reads() const override { return Reads::Parts; }
   /// Per erodible material: its count of columns, then (column, volume in units) sorted by column.
   void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override;
   void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
                    const std::vector<std::string_view>& parts, std::vector<double>& row) override;
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    sampleOwnPart(sim, elapsed, row);
-  }
 
 private:
   using Columns = std::unordered_map<uint64_t, double>;

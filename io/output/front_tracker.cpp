@@ -125,8 +125,4 @@ void FrontTracker::sampleParts(const Simulation& sim, double elapsed, const Part
   previous_ = f;
 }
 
-void FrontTracker::sample(const Simulation& sim, double elapsed, std::vector<double>& row) {
-  sampleOwnPart(sim, elapsed, row);
-}
-
 } // namespace talus

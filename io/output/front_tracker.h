@@ -17,16 +17,14 @@
 
 namespace talus {
 
-class FrontTracker final : public SeriesColumns {
+class FrontTracker final : public PartsColumns {
 public:
   /// `defaultThreshold` (m) applies when the path sets none (one particle spacing).
   FrontTracker(PathSpec spec, double defaultThreshold);
 
   void onStart(const Simulation& sim) override;
   std::vector<std::string> header() const override;
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override;
   /// In parts: each process's volumes per bin as fixed-point integers (dense, lanes × bins).
-  Reads reads() const override { return Reads::Parts; }
   void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override;
   void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
                    const std::vector<std::string_view>& parts, std::vector<double>& row) override;

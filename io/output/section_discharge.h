@@ -19,13 +19,12 @@
 
 namespace talus {
 
-class SectionDischarge final : public SeriesColumns {
+class SectionDischarge final : public PartsColumns {
 public:
   explicit SectionDischarge(SectionSpec spec) : spec_(std::move(spec)) {}
 
   void onStart(const Simulation& sim) override;
   std::vector<std::string> header() const override;
-  Reads reads() const override { return Reads::Parts; }
   /// Adds the crossings of `local`'s particles in the step of `dt` just taken to this process's total.
   void stepLocal(const Simulation& local, double dt) override;
   bool accumulates() const override { return true; }
@@ -33,9 +32,6 @@ public:
   void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override;
   void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
                    const std::vector<std::string_view>& parts, std::vector<double>& row) override;
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    sampleOwnPart(sim, elapsed, row);
-  }
   void handOver(std::vector<char>& out) override;
   /// @throw std::runtime_error if `in` is not one total per material
   void takeOver(std::string_view in) override;

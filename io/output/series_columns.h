@@ -48,7 +48,7 @@ public:
   virtual void handOver(std::vector<char>& out) {}
   /// @throw std::runtime_error if `in` is not what handOver writes for this column
   virtual void takeOver(std::string_view in) {}
-  /// sample() of a Reads::Parts column: its own part, merged alone.
+  /// sample() of a Reads::Parts column: its own part, merged alone (PartsColumns' sample).
   void sampleOwnPart(const Simulation& sim, double elapsed, std::vector<double>& row) {
     std::vector<char> own;
     const PartBounds b = PartBounds::of(sim);
@@ -58,6 +58,16 @@ public:
   /// Checkpointing of what sample() depends on besides the simulation.
   virtual void save(StateArchive& a, const std::string& prefix) const {}
   virtual void load(const StateArchive& a, const std::string& prefix) {}
+};
+
+/// A group of columns read in parts only: its sample() is its own part merged alone, so one
+/// process and rank 0 of many write the same bytes through the same calls.
+class PartsColumns : public SeriesColumns {
+public:
+  Reads reads() const final { return Reads::Parts; }
+  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) final {
+    sampleOwnPart(sim, elapsed, row);
+  }
 };
 
 } // namespace talus

@@ -28,7 +28,7 @@ namespace {
 
 /// Energies, masses and the maximum speed. Potential energy is -m g.x relative to the initial
 /// state, so kinetic + potential shows what friction and plasticity dissipated.
-class StateColumns final : public SeriesColumns {
+class StateColumns final : public PartsColumns {
 public:
   void onStart(const Simulation& sim) override {
     names_.clear();
@@ -50,7 +50,6 @@ public:
     for (const auto& n : covers_) h.push_back("entrained_mass_kg_field_" + n);
     return h;
   }
-  Reads reads() const override { return Reads::Parts; }
   // Per material: mass, kinetic and potential energy as fixed-point sums (each particle's value
   // in 64-bit units below 2^-62 of the largest, summed in 128 bits: exact in any order), and the
   // mass culled here.
@@ -108,9 +107,6 @@ public:
     row.push_back(sim.maxSpeed());
     for (size_t k = 0; k < covers_.size(); ++k) row.push_back(sim.bed()->entrainedMass(k));
   }
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    sampleOwnPart(sim, elapsed, row);
-  }
 
 private:
   void save(StateArchive& a, const std::string& prefix) const override { a.putValue(prefix + "potential0", potential0_); }
@@ -136,7 +132,7 @@ private:
 
 /// Highest water particle (world z, m): the materials listed in water_materials, or else every
 /// material whose model is "water". No column when there is none.
-class WaterSurfaceColumns final : public SeriesColumns {
+class WaterSurfaceColumns final : public PartsColumns {
 public:
   explicit WaterSurfaceColumns(std::vector<std::string> names) : names_(std::move(names)) {}
   void onStart(const Simulation& sim) override {
@@ -145,7 +141,6 @@ public:
   }
   bool any() const { return !water_.empty(); }
   std::vector<std::string> header() const override { return {"max_water_surface_m"}; }
-  Reads reads() const override { return Reads::Parts; }
   void part(const Simulation& local, const PartBounds&, std::vector<char>& out) const override {
     double z = -std::numeric_limits<double>::infinity(); // a maximum: exact in any order
     for (size_t g : water_)
@@ -157,9 +152,6 @@ public:
     double z = -std::numeric_limits<double>::infinity();
     for (const auto& p : parts) z = std::max(z, PartReader(p).get<double>());
     row.push_back(std::isfinite(z) ? z + sim.settings().origin.z() : std::numeric_limits<double>::quiet_NaN());
-  }
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    sampleOwnPart(sim, elapsed, row);
   }
 
 private:

@@ -23,7 +23,7 @@ std::vector<const MaterialGroup*> waterGroups(const Simulation& sim, const std::
 /// The same as indices into sim.groups(): what holds for another process's groups too.
 std::vector<size_t> waterGroupIndices(const Simulation& sim, const std::vector<std::string>& names);
 
-class WaterGauges final : public SeriesColumns {
+class WaterGauges final : public PartsColumns {
 public:
   /// `waterMaterials` as OutputSettings::waterMaterials; `particleSpacing` (m) the seeding
   /// spacing. Expects at least one gauge.
@@ -34,13 +34,9 @@ public:
   std::vector<std::string> header() const override;
   /// In parts: each process's tent-weighted volumes per gauge as fixed-point integers and its
   /// lowest water particle there.
-  Reads reads() const override { return Reads::Parts; }
   void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const override;
   void sampleParts(const Simulation& sim, double elapsed, const PartBounds& b,
                    const std::vector<std::string_view>& parts, std::vector<double>& row) override;
-  void sample(const Simulation& sim, double elapsed, std::vector<double>& row) override {
-    sampleOwnPart(sim, elapsed, row);
-  }
 
   /// The surface elevation (world z, m) at every gauge now, NaN where dry; one pass over the
   /// water particles whatever the number of gauges.
