@@ -181,6 +181,31 @@ TEST(RunOnRanks, AKilledRankEndsTheJobNamingItAndLeavesTheLastCheckpointWhole) {
       << resumed;
 }
 
+TEST(RunOnRanks, ASignalToOneRankStopsEveryRankAtTheSameStepAndTheRunResumes) {
+  // SIGTERM reaches rank 1 only (as from a node's own scheduler): the ranks agree on the flags in
+  // the step's one reduction, so rank 0 stops at the same step, writes the checkpoint and the
+  // summary, and one process resumes from it to a straight run's files.
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_signal");
+  const std::string scene = sceneFile(dir), run = dir + "/run";
+  const std::string set = " --set simulation.end_time=0.3 --set output.checkpoint_interval=0 --threads 1";
+  // Within two minutes: ranks that disagreed would wait for each other for ever.
+  const std::string cmd = "timeout 120 env " + mpirun(2) + "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then (while [ ! -s " + run +
+                          "/frames/particles_00001.h5 ]; do sleep 0.02; done; kill -TERM $$) & fi; exec " TALUS_BINARY
+                          " run " + scene + set + " --out " + run + "'";
+  std::string out;
+  EXPECT_NE(test::shell(cmd, out), 0) << out;
+  EXPECT_NE(out.find("interrupted by SIGTERM at step"), std::string::npos) << out;
+  const std::string summary = bytes(run + "/summary.json");
+  EXPECT_NE(summary.find("\"status\": \"interrupted\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"interrupted_by\": \"SIGTERM\""), std::string::npos) << summary;
+  ASSERT_TRUE(fs::exists(run + "/checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(run + "/particles.h5")) << "the run stopped before its end";
+  ASSERT_EQ(test::runTalus("run " + scene + set + " --quiet --resume " + run, out), 0) << out;
+  ASSERT_EQ(test::runTalus("run " + scene + set + " --quiet --out " + dir + "/straight", out), 0) << out;
+  expectSameFiles(dir + "/straight", run);
+}
+
 namespace {
 
 // A water dam break in a flume with two wave gauges and a section, and an elastic slab sliding

@@ -177,10 +177,11 @@ bool Run::advanceTo(double t, const std::function<void()>& after) {
 
 void Run::afterStep() {
   State& s = *s_;
-  if (s.output.readsEveryStep()) {
-    if (s.ranks.active()) stepOutputsOnRanks();
-    else s.outputs->step(*sim_);
-  }
+  // Signals are read once per step, after the step, when the state is whole. SIGUSR1: the job
+  // may be killed soon.
+  Agreed flags{takeCheckpointRequest(), stopSignalReceived()};
+  if (s.ranks.active()) flags = stepOnRanks(flags); // one reduction: the outputs' and the flags
+  else if (s.output.readsEveryStep()) s.outputs->step(*sim_);
   if (s.ranks.active()) s.balance.afterStep(s.ranks, *sim_);
   s.bar->update(sim_->time(), sim_->steps(), sim_->particleSteps());
   if (s.ranks.active() && s.ranks.root() && s.opt.handleSignals) {
@@ -189,33 +190,45 @@ void Run::afterStep() {
                   (unsigned long long)sim_->steps(), sim_->time(), res_.checkpointTime);
     setStopContext(line);
   }
-  // Signals are read once per step, after the step, when the state is whole (under MPI, the
-  // ranks' flags are reduced here). SIGUSR1: the job may be killed soon.
-  const bool asked = s.ranks.agree(takeCheckpointRequest());
   if (sim_->time() >= s.nextCheckpoint && sim_->time() < endTime_) {
     s.nextCheckpoint += s.checkpointEvery;
     checkpoint(); // the last good state: a failure later never overwrites it
-  } else if (asked) {
+  } else if (flags.checkpoint) {
     checkpoint();
   }
   // At the end time the run is complete: its final outputs are quicker than a resume.
-  if (const int sig = s.ranks.agree(stopSignalReceived()); sig && sim_->time() < endTime_) interrupt(sig);
+  if (flags.signal && sim_->time() < endTime_) interrupt(flags.signal);
 }
 
-void Run::stepOutputsOnRanks() {
+Run::Agreed Run::stepOnRanks(Agreed mine) {
+  State& s = *s_;
+  OutputSet& out = *s.outputs;
+  const bool outputs = s.output.readsEveryStep();
+  // What this process adds up from its own particles every step, and its maxima (the units of
+  // the parts' fixed-point sums).
+  double dt = 0;
+  PartBounds own;
+  if (outputs) {
+    dt = out.stepTime(*sim_);
+    out.stepLocal(*sim_, dt);
+    own = PartBounds::of(*sim_);
+  }
+  // One reduction for all the ranks agree on after a step: which outputs rank 0 needs, the
+  // maxima, and the signal flags (a maximum over the ranks, so a signal that reached one rank
+  // stops every rank at the same step).
+  const bool askDue = outputs && s.ranks.root();
+  double v[6] = {askDue ? -double(out.partsDue(*sim_)) : 0.0, -own.maxMass, -own.maxSpeed2, -own.maxCoord,
+                 -double(mine.checkpoint), -double(mine.signal)};
+  s.ranks.comm().minimum(v, 6);
+  if (outputs) stepOutputsOnRanks(dt, uint32_t(-v[0]), PartBounds{-v[1], -v[2], -v[3]});
+  return {int(-v[4]), int(-v[5])};
+}
+
+void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
   State& s = *s_;
   OutputSet& out = *s.outputs;
   Communicator& comm = s.ranks.comm();
   const bool root = s.ranks.root();
-  // One reduction: which outputs rank 0 needs this step, and every rank's maxima (the units of
-  // the parts' fixed-point sums).
-  const double dt = out.stepTime(*sim_);
-  out.stepLocal(*sim_, dt);
-  const PartBounds mine = PartBounds::of(*sim_);
-  double v[4] = {root ? -double(out.partsDue(*sim_)) : 0.0, -mine.maxMass, -mine.maxSpeed2, -mine.maxCoord};
-  comm.minimum(v, 4);
-  const uint32_t due = uint32_t(-v[0]);
-  const PartBounds b{-v[1], -v[2], -v[3]};
   // One all-to-all: rank 0 gets every part; the maps' cells go to the process owning them, so
   // no process adds every cell (OutputObserver::partsByOwner).
   const int n = comm.size();

@@ -10,6 +10,7 @@
 namespace talus {
 
 class Simulation;
+struct PartBounds;
 
 class Run {
 public:
@@ -49,9 +50,17 @@ public:
 private:
   struct State;
   void afterStep();
-  /// The per-step outputs under ranks: parts exchanged (the maps' cells to their owners, the
-  /// rest to rank 0), then what reads every particle.
-  void stepOutputsOnRanks();
+  /// What every rank must agree on after a step: a checkpoint asked for (SIGUSR1), a stop signal.
+  struct Agreed {
+    int checkpoint = 0, signal = 0;
+  };
+  /// Under ranks, after a step: this process's flags and the outputs' figures in one reduction,
+  /// then the per-step outputs. Returns the flags every rank agrees on.
+  Agreed stepOnRanks(Agreed mine);
+  /// The per-step outputs under ranks, with the step size, the outputs rank 0 needs and every
+  /// rank's maxima: parts exchanged (the maps' cells to their owners, the rest to rank 0), then
+  /// what reads every particle.
+  void stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b);
   /// Under ranks, before rank 0 writes a checkpoint or the end's files: the state of the cells
   /// the other processes own (OutputObserver::partsByOwner), gathered into rank 0's outputs.
   void gatherOutputState();

@@ -34,6 +34,7 @@ std::vector<RankFigures> rankFigures(const Simulation& sim) {
   f.particles = sim.particleCount();
   f.blocks = sim.grid().owning.size();
   f.bytesSent = dd.comm().bytesSent;
+  f.collectives = dd.comm().collectives;
   f.rebalances = dd.rebalances;
   f.communicationSeconds = dd.comm().seconds;
   f.computeSeconds = sim.phaseTimes().total() - sim.phaseTimes().halo;

@@ -55,7 +55,8 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
       const RankFigures& f = info.ranks[r];
       j << "    {\"rank\": " << r << ", \"particles\": " << f.particles << ", \"blocks\": " << f.blocks
         << ", \"compute_seconds\": " << num(f.computeSeconds) << ", \"communication_seconds\": "
-        << num(f.communicationSeconds) << ", \"bytes_sent\": " << f.bytesSent << ", \"rebalances\": " << f.rebalances
+        << num(f.communicationSeconds) << ", \"bytes_sent\": " << f.bytesSent << ", \"collective_calls\": " << f.collectives
+        << ", \"rebalances\": " << f.rebalances
         << ", \"memory_bytes\": " << memoryJson(f.memory) << "}" << (r + 1 < info.ranks.size() ? "," : "") << "\n";
     }
     j << "  ],\n";

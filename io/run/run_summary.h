@@ -23,6 +23,7 @@ MemoryFigures memoryFigures(const Simulation& sim);
 /// One MPI rank's share of a run (summary.json "ranks").
 struct RankFigures {
   uint64_t particles = 0, blocks = 0, bytesSent = 0, rebalances = 0;
+  uint64_t collectives = 0;        ///< MPI calls made (reductions, exchanges, gathers)
   double computeSeconds = 0;       ///< the step's phases other than communication
   double communicationSeconds = 0; ///< migration, halo, reductions and gathers (waiting included)
   MemoryFigures memory;            ///< the rank's engine (rank 0's output view only in peakResident)
