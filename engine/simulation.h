@@ -151,6 +151,9 @@ public:
   void advanceTo(double t, const std::function<void()>& onStep = {});
 
   double time() const { return time_; }
+  /// Sets the clock without stepping: for a copy holding another simulation's particles at its
+  /// time (a part of them, as a rank holds). Expects t >= 0; changes nothing else.
+  void setTime(double t) { time_ = t; }
   uint64_t steps() const { return steps_; }
   const SimulationSettings& settings() const { return settings_; }
   const std::vector<MaterialGroup*>& groups() const { return groupPtrs_; }

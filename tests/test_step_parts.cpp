@@ -1,5 +1,5 @@
 // Per-step outputs in parts (io/output/step_parts.h): the maps, the run-up map and the series
-// (with a path's front and a section's crossings) made from the particles split into parts, as ranks make them, are one
+// (with a path's front, a section's crossings and a probe) made from the particles split into parts, as ranks make them, are one
 // process's bit for bit, whatever the split. The split here is the hardest for sums in a fixed
 // order: alternate particles, so every map cell and every material draws from both parts.
 #include "engine/domain_decomposition.h"
@@ -36,6 +36,7 @@ void keepAlternate(const Simulation& from, Simulation& to, int odd) {
     dst.resizeState(0);
     appendParticles(dst, packed);
   }
+  to.setTime(from.time());
 }
 
 // The slabs under gravity: they fall and spread, so the maps' cells change every step.
@@ -201,14 +202,24 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   across.name = "across";
   across.points = {{2600002.5, 1200001.4}, {2600002.5, 1200000.2}};
   os.sections.push_back(across);
+  // A probe riding the snow slab: every rank sends its sums to every rank each step.
+  ProbeSpec probe;
+  probe.name = "ride";
+  probe.point = {2600001.4, 1200000.8, 1000.4};
+  probe.hasZ = true;
+  os.probes.push_back(probe);
   const std::string dir = test::tempDir("step_parts_series");
-  // `rank0` merges, `rank1` only makes its parts, as on a process other than rank 0.
+  // `rank0` makes the rows, `rank1` only its parts, as on a process other than rank 0.
   TimeSeries one(dir, os, 0.5, 0.05), rank0(dir, os, 0.5, 0.05), rank1(dir, os, 0.5, 0.05);
-  ASSERT_TRUE(rank0.stepsInParts()) << "energies, masses, fronts, sections and loads need no gathered particles";
-  ASSERT_TRUE(rank0.accumulatesOnRanks()) << "the section adds up crossings between rows";
   one.onStart(*sim);
   rank0.onStart(*sim);
   rank1.prepareParts(*sim);
+  ASSERT_TRUE(rank0.stepsInParts()) << "energies, masses, fronts, sections, probes and loads need no gathered particles";
+  ASSERT_TRUE(rank0.accumulatesOnRanks()) << "the section adds up crossings between rows";
+  ASSERT_TRUE(rank0.partsByOwner() && rank0.sharesState()) << "the probe moves on every rank";
+  std::vector<char> state;
+  rank0.shareState(state);
+  rank1.takeState(view(state)); // the probe's place and the series' clock, as after the start
   for (int i = 0; i < 40; ++i) {
     const double dt = sim->step();
     one.onStep(*sim, dt);
@@ -217,15 +228,13 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
     rank0.stepLocal(*even, dt);
     rank1.stepLocal(*odd, dt);
     if (i == 20) gatherState(rank0, rank1, *sim); // a checkpoint: rank 1's totals go to rank 0
-    if (!rank0.partDue(*sim)) { // the loads' columns still step
-      rank0.onStepParts(*sim, dt, PartBounds{}, {});
-      continue;
-    }
+    ASSERT_TRUE(rank0.partDue(*sim)) << "a probe needs every step";
     const PartBounds b = mergedBounds(*even, *odd);
-    std::vector<char> sent, kept;
-    rank1.part(*odd, b, false, sent);
-    rank0.part(*even, b, true, kept);
-    rank0.onStepParts(*sim, dt, b, {view(kept), view(sent)});
+    std::vector<std::vector<char>> from0(2), from1(2);
+    rank0.partByOwner(*even, b, 0, from0);
+    rank1.partByOwner(*odd, b, 1, from1);
+    rank0.onStepParts(*sim, dt, b, {view(from0[0]), view(from1[0])});
+    rank1.onStepParts(*sim, dt, b, {view(from0[1]), view(from1[1])});
   }
   const SeriesTable &x = one.table(), &y = rank0.table();
   ASSERT_GT(x.rows.size(), 10u);
@@ -251,6 +260,17 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   for (size_t p = 0; p < snow.size(); ++p) beyond += snow.x[p][0] > 2.5 ? double(snow.mass[p]) / 300 : 0.0;
   EXPECT_GT(beyond, 0.01) << "the slab has reached the section";
   EXPECT_NEAR(crossed, beyond, 1e-9 * beyond);
+  // Both ranks moved the probe alike, and it rode the slab at about its 2 m/s.
+  std::vector<char> state0, state1;
+  rank0.shareState(state0);
+  rank1.shareState(state1);
+  EXPECT_TRUE(state0 == state1) << "rank 1's probe or clock is not rank 0's";
+  // Downstream the probe keeps the slab's 2 m/s (it also falls, up to 2 m/s in 0.2 s, onto the
+  // domain's floor: its speed is not checked); 10 % for the floor's friction once it lands.
+  const int px = x.column("probe_x_m_ride");
+  ASSERT_GE(px, 0);
+  const double along = x.rows.back()[size_t(px)] - x.rows.front()[size_t(px)], t = x.rows.back()[0];
+  EXPECT_NEAR(along / t, 2.0, 0.2) << along << " m in " << t << " s";
 }
 
 TEST(StepParts, RunUpMapFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {

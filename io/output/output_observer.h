@@ -72,6 +72,13 @@ public:
   /// This process's part for every other process r (appended to outs[r]; outs.size() is the
   /// number of processes). Its own cells' sums stay in place for its onStepParts.
   virtual void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) {}
+  /// An output by owner whose processes keep the same state (a probe's place, the series'
+  /// clock): after the start and after a resume, rank 0's shareState() goes to every other
+  /// process's takeState().
+  virtual bool sharesState() const { return false; }
+  virtual void shareState(std::vector<char>& out) const {}
+  /// @throw std::runtime_error if `in` is not what shareState writes
+  virtual void takeState(std::string_view in) {}
   /// After onStepParts, on every process alike: whether rank 0 needs this step's folded cells
   /// (a film frame), sent by results(false).
   virtual bool resultDue() const { return false; }

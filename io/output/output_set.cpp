@@ -202,6 +202,30 @@ void OutputSet::mergeResults(const Simulation& sim, bool state, const std::vecto
   });
 }
 
+bool OutputSet::sharesState(int ranks) const {
+  bool any = false;
+  for (const auto& out : outputs_) any |= out->stepsInParts() && byOwner(*out, ranks) && out->sharesState();
+  return any;
+}
+
+std::vector<char> OutputSet::sharedState(int ranks) {
+  std::vector<std::vector<char>> buffer(1);
+  SizedParts sized(buffer);
+  eachInParts([&](OutputObserver& o, size_t) {
+    if (!byOwner(o, ranks) || !o.sharesState()) return;
+    sized.open(0);
+    o.shareState(buffer[0]);
+    sized.close(0);
+  });
+  return std::move(buffer[0]);
+}
+
+void OutputSet::takeSharedState(std::string_view rest, int ranks) {
+  eachInParts([&](OutputObserver& o, size_t) {
+    if (byOwner(o, ranks) && o.sharesState()) o.takeState(takeSized(rest));
+  });
+}
+
 void OutputSet::stepWhole(const Simulation& whole, double dt) {
   each([&](OutputObserver& o) {
     if (o.readsEveryStep() && !o.stepsInParts()) o.onStep(whole, dt);

@@ -61,6 +61,13 @@ public:
   /// Before a checkpoint or the end, with `state`, after a gather of results(true).
   /// @throw std::runtime_error if a buffer does not hold the results
   void mergeResults(const Simulation& sim, bool state, const std::vector<std::string_view>& buffers, int ranks);
+  /// Whether some output by owner keeps the same state on every process (the same everywhere).
+  bool sharesState(int ranks) const;
+  /// Rank 0, after the start or a resume: that state, as one buffer for every other process,
+  /// which takes it with takeSharedState.
+  /// @throw std::runtime_error (takeSharedState) if the buffer does not hold it
+  std::vector<char> sharedState(int ranks);
+  void takeSharedState(std::string_view buffer, int ranks);
   void stepWhole(const Simulation& whole, double dt);
   /// Whether some output reads every particle after every step (the same on every process).
   bool readsWholeEachStep() const { return readsWhole_; }

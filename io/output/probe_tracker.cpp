@@ -16,64 +16,104 @@ std::vector<std::string> ProbeTracker::header() const {
   return {"probe_speed_m_s_" + n, "probe_x_m_" + n, "probe_y_m_" + n, "probe_z_m_" + n};
 }
 
-bool ProbeTracker::meanVelocity(const Simulation& sim, const Vec3d& at, bool columnOnly, Vec3d& v, double* z) const {
-  struct Sum {
-    double m = 0, z = 0;
-    Vec3d mv = Vec3d::Zero();
-  };
+namespace {
+
+/// The units of a probe's sums: mass, momentum (per component) and mass times height, each
+/// particle's value below 2^62 units, summed in 128 bits.
+struct Units {
+  int m, p, z;
+  explicit Units(const PartBounds& b)
+      : m(unitExponent(b.maxMass, kTotalBits)), p(unitExponent(b.maxMass * std::sqrt(b.maxSpeed2), kTotalBits)),
+        z(unitExponent(b.maxMass * b.maxCoord, kTotalBits)) {}
+};
+
+struct Sums {
+  __int128 v[5] = {0, 0, 0, 0, 0}; ///< mass, momentum x y z, mass times height
+  Sums& operator+=(const Sums& o) {
+    for (int k = 0; k < 5; ++k) v[k] += o.v[k];
+    return *this;
+  }
+};
+
+} // namespace
+
+void ProbeTracker::sumsAround(const Simulation& local, const PartBounds& b, const Vec3d& at, bool columnOnly,
+                              std::vector<char>& out) const {
+  const Units u(b);
+  const double perM = powerOfTwo(-u.m), perP = powerOfTwo(-u.p), perZ = powerOfTwo(-u.z);
   const double r2 = radius_ * radius_;
-  Sum total;
-  const auto& groups = sim.groups();
+  Sums total;
+  const auto& groups = local.groups();
   for (size_t g = 0; g < groups.size(); ++g) {
     if (!use_[g]) continue;
     const ParticleSet& P = groups[g]->particles;
-    // Fixed chunks summed in a fixed tree: the same probe path at any thread count.
-    const Sum s = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, P.size(), 8192), Sum{},
-        [&](const tbb::blocked_range<size_t>& r, Sum acc) {
+    // Whole units: the same sums in any order, so at any thread and rank count.
+    total += tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, P.size(), 8192), Sums{},
+        [&](const tbb::blocked_range<size_t>& r, Sums acc) {
           for (size_t p = r.begin(); p != r.end(); ++p) {
             const Vec3d d = P.x[p].cast<double>() - at;
             const double d2 = columnOnly ? d.head<2>().squaredNorm() : d.squaredNorm();
             if (d2 > r2) continue;
             const double m = double(P.mass[p]);
-            acc.m += m;
-            acc.mv += m * P.v[p].cast<double>();
-            acc.z += m * double(P.x[p][2]);
+            acc.v[0] += toUnits(m, perM);
+            for (int k = 0; k < 3; ++k) acc.v[1 + k] += toUnits(m * double(P.v[p][k]), perP);
+            acc.v[4] += toUnits(m * double(P.x[p][2]), perZ);
           }
           return acc;
         },
-        [](Sum a, const Sum& b) {
-          a.m += b.m, a.mv += b.mv, a.z += b.z;
-          return a;
-        });
-    total.m += s.m, total.mv += s.mv, total.z += s.z;
+        [](Sums a, const Sums& c) { return a += c; });
   }
-  if (!(total.m > 0)) return false;
-  v = total.mv / total.m;
-  if (z) *z = total.z / total.m;
+  PartWriter put(out);
+  for (const __int128& v : total.v) put.put(v);
+}
+
+bool ProbeTracker::meanVelocity(const Simulation&, const PartBounds& b, const std::vector<std::string_view>& parts,
+                                Vec3d& v, double* z) const {
+  Sums total;
+  for (const auto& p : parts) {
+    PartReader get(p);
+    for (__int128& t : total.v) t += get.get<__int128>();
+  }
+  if (total.v[0] <= 0) return false;
+  const Units u(b);
+  const double m = double(total.v[0]) * powerOfTwo(u.m);
+  for (int k = 0; k < 3; ++k) v[k] = double(total.v[1 + k]) * powerOfTwo(u.p) / m;
+  if (z) *z = double(total.v[4]) * powerOfTwo(u.z) / m;
   return true;
 }
 
-void ProbeTracker::onStart(const Simulation& sim) {
-  radius_ = spec_.radius > 0 ? spec_.radius : 2 * sim.settings().dx;
-  const auto& groups = sim.groups();
+bool ProbeTracker::meanVelocityOf(const Simulation& sim, const Vec3d& at, bool columnOnly, Vec3d& v, double* z) const {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  sumsAround(sim, b, at, columnOnly, own);
+  return meanVelocity(sim, b, {std::string_view(own.data(), own.size())}, v, z);
+}
+
+void ProbeTracker::prepareParts(const Simulation& local) {
+  radius_ = spec_.radius > 0 ? spec_.radius : 2 * local.settings().dx;
+  const auto& groups = local.groups();
   use_.assign(groups.size(), spec_.materials.empty() ? 1 : 0);
   for (size_t g = 0; g < groups.size(); ++g)
     for (const auto& n : spec_.materials)
       if (groups[g]->name() == n) use_[g] = 1;
-  origin_ = sim.settings().origin;
+  origin_ = local.settings().origin;
   local_ = spec_.point - origin_;
   lost_ = false;
   velocity_.setZero();
+}
+
+void ProbeTracker::onStart(const Simulation& sim) {
+  prepareParts(sim);
   if (!spec_.hasZ) {
     // [x, y]: start at the mass-weighted mean height of the material in that column.
     double z = 0;
-    if (!meanVelocity(sim, Vec3d(local_.x(), local_.y(), 0), true, velocity_, &z))
+    if (!meanVelocityOf(sim, Vec3d(local_.x(), local_.y(), 0), true, velocity_, &z))
       throw std::runtime_error("probe '" + spec_.name + "': no particle of its materials within " +
                                std::to_string(radius_) + " m of its point (in x and y)");
     local_.z() = z;
   }
-  if (!meanVelocity(sim, local_, false, velocity_)) {
+  if (!meanVelocityOf(sim, local_, false, velocity_)) {
     if (spec_.hasZ)
       throw std::runtime_error("probe '" + spec_.name + "': no particle of its materials within " +
                                std::to_string(radius_) + " m of its point");
@@ -81,17 +121,36 @@ void ProbeTracker::onStart(const Simulation& sim) {
   }
 }
 
-void ProbeTracker::onStep(const Simulation& sim, double dt) {
+void ProbeTracker::sharedPart(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {
+  if (lost_) return; // every process has lost it alike
+  sumsAround(local, b, local_, false, out);
+}
+
+void ProbeTracker::sharedStep(const Simulation& sim, double dt, const PartBounds& b,
+                              const std::vector<std::string_view>& parts) {
   if (lost_) return;
   // As a particle: the velocity gathered at the old position, then x += dt v (the engine moved
   // the particles by dt times their new velocities).
   Vec3d v;
-  if (!meanVelocity(sim, local_, false, v)) {
+  if (!meanVelocity(sim, b, parts, v)) {
     lost_ = true;
     return;
   }
   velocity_ = v;
   local_ += dt * v;
+}
+
+void ProbeTracker::shareState(std::vector<char>& out) const {
+  PartWriter put(out);
+  for (int k = 0; k < 3; ++k) put.put(local_[k]), put.put(velocity_[k]);
+  put.put(uint8_t(lost_));
+}
+
+void ProbeTracker::takeState(std::string_view in) {
+  PartReader get(in);
+  for (int k = 0; k < 3; ++k) local_[k] = get.get<double>(), velocity_[k] = get.get<double>();
+  lost_ = get.get<uint8_t>() != 0;
+  if (!get.done()) throw std::runtime_error("probe '" + spec_.name + "': rank 0's state is not a probe's");
 }
 
 void ProbeTracker::save(StateArchive& a, const std::string& prefix) const {

@@ -16,6 +16,9 @@ public:
   virtual ~SeriesColumns() = default;
   /// Called once before the first sample; the header may depend on the materials present.
   virtual void onStart(const Simulation& sim) {}
+  /// Instead of onStart on a process other than rank 0, with its own particles only: what its
+  /// parts need. A Shared column then gets rank 0's state (takeState).
+  virtual void prepareParts(const Simulation& local) { onStart(local); }
   /// Column names with their units (valid after onStart).
   virtual std::vector<std::string> header() const = 0;
   /// After every step: accumulate whatever must not be missed between samples.
@@ -25,9 +28,12 @@ public:
   virtual void sample(const Simulation& sim, double elapsed, std::vector<double>& row) = 0;
   /// How sample() reads the particles. Whole: every particle in one place (under ranks, rank
   /// 0's gathered copy, every step). Parts: only through part() on each process and
-  /// sampleParts() merging them exactly (io/output/step_parts.h). None: not at all (figures rank
-  /// 0 holds itself, such as the collider loads; onStep must read no particles either).
-  enum class Reads { Whole, Parts, None };
+  /// sampleParts() merging them exactly (io/output/step_parts.h). Shared: a state that moves
+  /// every step by exact sums over every particle (a probe): every process sends its sums to
+  /// every process (sharedPart) and each moves its copy alike (sharedStep); sample() reads that
+  /// state. None: not at all (figures rank 0 holds itself, such as the collider loads; onStep
+  /// must read no particles either).
+  enum class Reads { Whole, Parts, Shared, None };
   virtual Reads reads() const { return Reads::Whole; }
   /// Reads::Parts: this process's contribution from its own particles.
   virtual void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {}
@@ -36,6 +42,14 @@ public:
                            const std::vector<std::string_view>& parts, std::vector<double>& row) {
     sample(sim, elapsed, row);
   }
+  /// Reads::Shared, every step on every process: this process's sums from its own particles,
+  /// then the step from every process's (rank order), the same on every process.
+  virtual void sharedPart(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {}
+  virtual void sharedStep(const Simulation& sim, double dt, const PartBounds& b,
+                          const std::vector<std::string_view>& parts) {}
+  /// Reads::Shared: rank 0's state for the other processes, after the start or a resume.
+  virtual void shareState(std::vector<char>& out) const {}
+  virtual void takeState(std::string_view in) {}
   /// Reads::Parts columns that must see every step, not only the sampled ones (a section's
   /// crossings): after every step, on every process with its own particles (one process: all of
   /// them), before any part. What it adds up stays on that process for its part().

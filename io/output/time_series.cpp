@@ -179,17 +179,22 @@ TimeSeries::TimeSeries(std::string outDir, const OutputSettings& s, double endTi
 
 TimeSeries::~TimeSeries() = default;
 
-void TimeSeries::prepareParts(const Simulation& sim) {
-  for (auto& c : columns_) c->onStart(sim);
+void TimeSeries::prepare(const Simulation& sim, bool whole) {
+  for (auto& c : columns_) whole ? c->onStart(sim) : c->prepareParts(sim);
   // The water column only exists when the scene has water.
   if (auto* w = dynamic_cast<WaterSurfaceColumns*>(columns_.back().get()); w && !w->any()) columns_.pop_back();
   table_.header = {"time_s", "dt_s"};
   for (const auto& c : columns_)
     for (const auto& h : c->header()) table_.header.push_back(h);
+  shared_ = false;
+  for (const auto& c : columns_) shared_ |= c->reads() == SeriesColumns::Reads::Shared;
 }
 
+void TimeSeries::prepareParts(const Simulation& sim) { prepare(sim, false); }
+
 void TimeSeries::onStart(const Simulation& sim) {
-  prepareParts(sim);
+  prepare(sim, true);
+  root_ = true;
   lastSample_ = sim.time();
   sample(sim);
 }
@@ -227,9 +232,18 @@ void TimeSeries::mergeResults(const Simulation&, bool state, const std::vector<s
       if (c->accumulates()) c->takeOver(takeSized(rest));
 }
 
-bool TimeSeries::partDue(const Simulation& sim) const { return sim.time() >= nextSample_ - 1e-9 * interval_; }
+bool TimeSeries::sampleDue(const Simulation& sim) const { return sim.time() >= nextSample_ - 1e-9 * interval_; }
 
-void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
+bool TimeSeries::partDue(const Simulation& sim) const { return shared_ || sampleDue(sim); }
+
+void TimeSeries::putParts(const Simulation& local, const PartBounds& b, bool samples, std::vector<char>& out) const {
+  for (const auto& c : columns_) {
+    if (c->reads() != SeriesColumns::Reads::Shared) continue;
+    std::vector<char> p;
+    c->sharedPart(local, b, p);
+    putSized(out, p);
+  }
+  if (!samples) return;
   for (const auto& c : columns_) {
     if (c->reads() != SeriesColumns::Reads::Parts) continue;
     std::vector<char> p;
@@ -238,25 +252,56 @@ void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::v
   }
 }
 
+void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
+  putParts(local, b, sampleDue(local), out);
+}
+
+void TimeSeries::partByOwner(const Simulation& local, const PartBounds& b, int, std::vector<std::vector<char>>& outs) {
+  // The probes' sums to every process; a row's parts to rank 0 alone. Every process keeps the
+  // series' clock (its state comes from rank 0), so each knows when a row is due.
+  const bool samples = sampleDue(local);
+  for (size_t r = 0; r < outs.size(); ++r) putParts(local, b, samples && r == 0, outs[r]);
+}
+
 void TimeSeries::onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                              const std::vector<std::string_view>& parts) {
   lastDt_ = dt;
   for (auto& c : columns_) c->onStep(sim, dt); // none reads particles (stepsInParts)
   if (parts.empty()) return;
-  // Each process's part is its columns' parts in turn, each after its length.
+  // Each process's part is its columns' parts in turn, each after its length: the Shared
+  // columns' first, then, at a row, the Parts columns'.
   std::vector<std::string_view> rest = parts;
-  const double elapsed = sim.time() - lastSample_;
-  std::vector<double> row{sim.time(), lastDt_};
-  for (auto& c : columns_) {
-    if (c->reads() != SeriesColumns::Reads::Parts) {
-      c->sampleParts(sim, elapsed, b, {}, row);
-      continue;
-    }
+  auto take = [&] {
     std::vector<std::string_view> mine;
     for (auto& r : rest) mine.push_back(takeSized(r));
-    c->sampleParts(sim, elapsed, b, mine, row);
-  }
+    return mine;
+  };
+  for (auto& c : columns_)
+    if (c->reads() == SeriesColumns::Reads::Shared) c->sharedStep(sim, dt, b, take());
+  if (!sampleDue(sim)) return;
+  if (!root_) return advanceClock(sim); // only rank 0 makes the row
+  const double elapsed = sim.time() - lastSample_;
+  std::vector<double> row{sim.time(), lastDt_};
+  for (auto& c : columns_)
+    c->sampleParts(sim, elapsed, b, c->reads() == SeriesColumns::Reads::Parts ? take() : std::vector<std::string_view>(), row);
   endSample(sim, std::move(row));
+}
+
+void TimeSeries::shareState(std::vector<char>& out) const {
+  PartWriter(out).put(nextSample_);
+  for (const auto& c : columns_) {
+    if (c->reads() != SeriesColumns::Reads::Shared) continue;
+    std::vector<char> p;
+    c->shareState(p);
+    putSized(out, p);
+  }
+}
+
+void TimeSeries::takeState(std::string_view in) {
+  nextSample_ = PartReader(in).get<double>();
+  in.remove_prefix(sizeof nextSample_);
+  for (auto& c : columns_)
+    if (c->reads() == SeriesColumns::Reads::Shared) c->takeState(takeSized(in));
 }
 
 void TimeSeries::save(StateArchive& a, const std::string& prefix) const {
@@ -284,10 +329,9 @@ void TimeSeries::load(const StateArchive& a, const std::string& prefix) {
 }
 
 void TimeSeries::onStep(const Simulation& sim, double dt) {
-  stepLocal(sim, dt); // every particle is here
-  lastDt_ = dt;
-  for (auto& c : columns_) c->onStep(sim, dt);
-  if (sim.time() >= nextSample_ - 1e-9 * interval_) sample(sim);
+  // One process with every particle: the calls of a run in parts, with its own part alone.
+  stepLocal(sim, dt);
+  stepOwnPart(sim, dt);
 }
 
 void TimeSeries::sample(const Simulation& sim) {
@@ -299,6 +343,10 @@ void TimeSeries::sample(const Simulation& sim) {
 
 void TimeSeries::endSample(const Simulation& sim, std::vector<double>&& row) {
   table_.rows.push_back(std::move(row));
+  advanceClock(sim);
+}
+
+void TimeSeries::advanceClock(const Simulation& sim) {
   lastSample_ = sim.time();
   nextSample_ = (std::floor(sim.time() / interval_ + 1e-9) + 1) * interval_;
 }

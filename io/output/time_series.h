@@ -29,9 +29,15 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
-  /// In parts when no column reads the particles whole (probes and the entrained mass of
-  /// erodible materials do).
+  /// In parts when no column reads the particles whole (none does now).
   bool stepsInParts() const override;
+  /// By owner when it has probes (Reads::Shared): every process then gets every process's sums
+  /// each step and moves its probes alike; only rank 0 makes rows.
+  bool partsByOwner() const override { return shared_; }
+  void partByOwner(const Simulation& local, const PartBounds& b, int self, std::vector<std::vector<char>>& outs) override;
+  bool sharesState() const override { return shared_; }
+  void shareState(std::vector<char>& out) const override;
+  void takeState(std::string_view in) override;
   void stepLocal(const Simulation& local, double dt) override;
   bool accumulatesOnRanks() const override;
   void ownedResult(bool state, std::vector<char>& out) override;
@@ -51,8 +57,13 @@ public:
   double interval() const { return interval_; }
 
 private:
+  void prepare(const Simulation& sim, bool whole);
+  bool sampleDue(const Simulation& sim) const;
   void sample(const Simulation& sim);
   void endSample(const Simulation& sim, std::vector<double>&& row);
+  void advanceClock(const Simulation& sim);
+  /// The Shared columns' parts, then (`samples`) the Parts columns', each after its length.
+  void putParts(const Simulation& local, const PartBounds& b, bool samples, std::vector<char>& out) const;
   void writeCsv();
 
   std::string outDir_;
@@ -62,6 +73,8 @@ private:
   class ColliderLoadColumns* loads_ = nullptr; ///< one of columns_, when loads are written
   SeriesTable table_;
   double lastSample_ = 0, nextSample_ = 0, lastDt_ = 0;
+  bool shared_ = false; ///< some column is Reads::Shared (a probe)
+  bool root_ = false;   ///< makes the rows (onStart ran here: rank 0, or one process)
 };
 
 } // namespace talus

@@ -125,6 +125,7 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       const bool seededInParts = scene.seedSlice.active() && !opt.resume;
       sim_->distribute(opt.ranks, 0.1, seededInParts ? &scene.seedSlice.index : nullptr);
       sim_->gatherInto(s.viewed.get());
+      shareOutputState();
     }
     s.bar = std::make_unique<ProgressBar>(endTime_, stderr, opt.progress && s.ranks.root());
   });
@@ -253,6 +254,20 @@ void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - o1).count();
     s.balance.addOutputSeconds(seconds);
   });
+}
+
+void Run::shareOutputState() {
+  State& s = *s_;
+  Communicator& comm = s.ranks.comm();
+  const int n = comm.size();
+  if (!s.outputs->sharesState(n)) return; // the same answer on every rank: the scene's outputs
+  std::vector<std::vector<char>> send(static_cast<size_t>(n));
+  if (s.ranks.root()) {
+    const std::vector<char> state = s.outputs->sharedState(n);
+    for (int r = 1; r < n; ++r) send[size_t(r)] = state;
+  }
+  const std::vector<std::vector<char>> got = comm.exchange(send);
+  if (!s.ranks.root()) s.outputs->takeSharedState(std::string_view(got[0].data(), got[0].size()), n);
 }
 
 void Run::gatherOutputState() {

@@ -64,6 +64,9 @@ private:
   /// Under ranks, before rank 0 writes a checkpoint or the end's files: the state of the cells
   /// the other processes own (OutputObserver::partsByOwner), gathered into rank 0's outputs.
   void gatherOutputState();
+  /// Under ranks, after the start or a resume: rank 0's state of the outputs every process keeps
+  /// alike (OutputObserver::sharesState: a probe's place, the series' clock) to every process.
+  void shareOutputState();
   void finish();
   template <class F> void guarded(F&& f);
   void writeFailed(const std::string& what);
