@@ -253,7 +253,8 @@ void TimeSeries::putParts(const Simulation& local, const PartBounds& b, bool sam
 }
 
 void TimeSeries::part(const Simulation& local, const PartBounds& b, bool, std::vector<char>& out) {
-  putParts(local, b, sampleDue(local), out);
+  // Due without probes means a row (rank 0 decides; another process keeps no clock then).
+  putParts(local, b, !shared_ || sampleDue(local), out);
 }
 
 void TimeSeries::partByOwner(const Simulation& local, const PartBounds& b, int, std::vector<std::vector<char>>& outs) {
