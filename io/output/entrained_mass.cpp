@@ -6,13 +6,17 @@
 
 namespace talus {
 
-void EntrainedMassColumns::onStart(const Simulation& sim) {
+void EntrainedMassColumns::prepareParts(const Simulation& local) {
   groups_.clear(), groupNames_.clear();
-  for (size_t g = 0; g < sim.groups().size(); ++g)
-    if (std::find(names_.begin(), names_.end(), sim.groups()[g]->name()) != names_.end()) {
+  for (size_t g = 0; g < local.groups().size(); ++g)
+    if (std::find(names_.begin(), names_.end(), local.groups()[g]->name()) != names_.end()) {
       groups_.push_back(int(g));
-      groupNames_.push_back(sim.groups()[g]->name());
+      groupNames_.push_back(local.groups()[g]->name());
     }
+}
+
+void EntrainedMassColumns::onStart(const Simulation& sim) {
+  prepareParts(sim);
   // Through a part, as every later sample: the start as one process has it.
   std::vector<char> own;
   const PartBounds b = PartBounds::of(sim);

@@ -19,7 +19,10 @@ class EntrainedMassColumns final : public PartsColumns {
 public:
   /// `materials`: the erodible materials' names; those absent from the scene are ignored.
   explicit EntrainedMassColumns(std::vector<std::string> materials) : names_(std::move(materials)) {}
+  /// From every particle: the groups and their volumes per column at the start.
   void onStart(const Simulation& sim) override;
+  /// The groups only: the start's volumes are rank 0's.
+  void prepareParts(const Simulation& local) override;
   bool any() const { return !groups_.empty(); }
   std::vector<std::string> header() const override;
   /// Per erodible material: its count of columns, then (column, volume in units) sorted by column.

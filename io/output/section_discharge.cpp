@@ -75,7 +75,11 @@ void SectionDischarge::stepLocal(const Simulation& local, double dt) {
 }
 
 void SectionDischarge::part(const Simulation&, const PartBounds&, std::vector<char>& out) const {
-  PartWriter put(out); // the totals, whatever the bounds: their unit is the run's
+  putTotals(out); // whatever the bounds: their unit is the run's
+}
+
+void SectionDischarge::putTotals(std::vector<char>& out) const {
+  PartWriter put(out);
   for (Sum c : crossed_) put.put(c);
 }
 
@@ -97,8 +101,7 @@ void SectionDischarge::sampleParts(const Simulation& sim, double elapsed, const 
 }
 
 void SectionDischarge::handOver(std::vector<char>& out) {
-  PartWriter put(out);
-  for (Sum c : crossed_) put.put(c);
+  putTotals(out);
   std::fill(crossed_.begin(), crossed_.end(), 0);
 }
 

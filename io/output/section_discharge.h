@@ -40,6 +40,7 @@ public:
 
 private:
   using Sum = __int128;
+  void putTotals(std::vector<char>& out) const;
   SectionSpec spec_;
   std::vector<Eigen::Vector2d> local_; ///< polyline in the local frame
   Eigen::Vector2d lo_, hi_;            ///< its bounding box
