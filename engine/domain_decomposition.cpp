@@ -129,24 +129,6 @@ void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
   g.appendState(state.data(), n);
 }
 
-constexpr size_t kKinematicBytes = 2 * sizeof(Vec3) + sizeof(Real);
-
-void packKinematics(const MaterialGroup& g, std::vector<char>& out, size_t begin, size_t end) {
-  const ParticleSet& P = g.particles;
-  out.resize((end - begin) * kKinematicBytes);
-  char* o = out.data();
-  for (size_t p = begin; p < end; ++p) put(o, P.x[p]), put(o, P.v[p]), put(o, P.mass[p]);
-}
-
-void unpackKinematics(const std::vector<char>& in, MaterialGroup& g) {
-  const size_t n = in.size() / kKinematicBytes;
-  ParticleSet& P = g.particles;
-  P.resize(n);
-  g.resizeState(n);
-  const char* s = in.data();
-  for (size_t p = 0; p < n; ++p) take(s, P.x[p]), take(s, P.v[p]), take(s, P.mass[p]);
-}
-
 size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, Real dx, const std::vector<size_t>* fresh) {
   const int n = comm_->size(), me = comm_->rank();
   const Real invDx = Real(1) / dx;

@@ -39,10 +39,6 @@ inline bool treeOrderLess(const BlockCoord& a, const BlockCoord& b) {
 /// ParticleSet::bytesPerParticle() + g.stateBytesPerParticle() bytes; and records appended to g.
 void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out);
 void appendParticles(MaterialGroup& g, const std::vector<char>& in);
-/// Positions, velocities and masses of g's particles [begin, end) (28 bytes each); unpacking
-/// resizes g to the records' count and fills those three arrays only.
-void packKinematics(const MaterialGroup& g, std::vector<char>& out, size_t begin, size_t end);
-void unpackKinematics(const std::vector<char>& in, MaterialGroup& g);
 
 class DomainDecomposition {
 public:

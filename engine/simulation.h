@@ -128,14 +128,11 @@ public:
   /// (DomainDecomposition::setShares); ranks rebalance toward them when they pass the threshold.
   void setRankShares(std::vector<double> shares) { ranks_->setShares(std::move(shares)); }
   const HaloExchange& halo() const { return halo_; }
-  /// What gatherInto sends: everything, or the positions, velocities and masses alone (28 of
-  /// ~130 bytes per particle), which is all the per-step outputs (maps, series) read.
-  enum class GatherScope { Whole, Kinematics };
   /// Collective: rank 0's `view` (a Simulation built from the same scene, never stepped) gets
   /// every rank's particles in one process's order, the clock, counters, loads and mass ledger,
-  /// so outputs written from it are one process's files. Other ranks pass null. With
-  /// Kinematics, the view's other particle arrays and model states are stale (sized, not filled).
-  void gatherInto(Simulation* view, GatherScope scope = GatherScope::Whole);
+  /// so outputs written from it are one process's files. Other ranks pass null. The per-step
+  /// outputs never need it (they step in parts); frames, checkpoints and the end's files do.
+  void gatherInto(Simulation* view);
   /// Particles on all ranks (this process's count without ranks).
   size_t globalParticleCount() const;
 

@@ -384,7 +384,7 @@ void Simulation::RankPhases::throwNonFinite() const {
   throw NumericalError("non-finite particle state at step " + std::to_string(s.steps_));
 }
 
-void Simulation::gatherInto(Simulation* view, GatherScope scope) {
+void Simulation::gatherInto(Simulation* view) {
   Communicator& comm = ranks_->comm();
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
@@ -394,13 +394,9 @@ void Simulation::gatherInto(Simulation* view, GatherScope scope) {
     const size_t fresh = gi < fresh_.size() ? fresh_[gi] : 0;
     auto gatherRange = [&](size_t begin, size_t end) {
       std::vector<char> mine;
-      if (scope == GatherScope::Whole) {
-        std::vector<uint32_t> idx(end - begin);
-        for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(begin + i);
-        packParticles(g, idx, mine);
-      } else {
-        packKinematics(g, mine, begin, end);
-      }
+      std::vector<uint32_t> idx(end - begin);
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(begin + i);
+      packParticles(g, idx, mine);
       std::vector<size_t> counts;
       return comm.gather(mine, counts);
     };
@@ -411,13 +407,9 @@ void Simulation::gatherInto(Simulation* view, GatherScope scope) {
     }
     if (!view) continue;
     MaterialGroup& to = *view->groupPtrs_[gi];
-    if (scope == GatherScope::Whole) {
-      to.particles.resize(0);
-      to.resizeState(0);
-      appendParticles(to, gathered);
-    } else {
-      unpackKinematics(gathered, to);
-    }
+    to.particles.resize(0);
+    to.resizeState(0);
+    appendParticles(to, gathered);
     to.setRankMinima(g.rankMinima());
   }
   std::vector<double> removed = massRemoved_;

@@ -214,7 +214,6 @@ TEST(StepParts, SeriesFromAlternateParticlesInTwoPartsIsOneProcesssBitForBit) {
   one.onStart(*sim);
   rank0.onStart(*sim);
   rank1.prepareParts(*sim);
-  ASSERT_TRUE(rank0.stepsInParts()) << "energies, masses, fronts, sections, probes and loads need no gathered particles";
   ASSERT_TRUE(rank0.accumulatesOnRanks()) << "the section adds up crossings between rows";
   ASSERT_TRUE(rank0.partsByOwner() && rank0.sharesState()) << "the probe moves on every rank";
   std::vector<char> state;

@@ -13,7 +13,7 @@
 //   dynamic pressure          = sum m |v|^2 / sum V (= rho v^2 for one material), in kPa
 // The sums are fixed-point integers (units below 2^-40 of the largest particle's value), so they
 // are exact in any order: under ranks each process sums its own particles into a part and rank 0
-// adds the parts (stepsInParts), with the bytes of one process.
+// adds the parts (OutputObserver::readsEveryStep), with the bytes of one process.
 #pragma once
 
 #include "io/output/output_settings.h"
@@ -48,7 +48,6 @@ public:
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
-  bool stepsInParts() const override { return true; }
   void prepareParts(const Simulation& sim) override;
   bool partDue(const Simulation& sim) const override;
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;

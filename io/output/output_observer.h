@@ -29,15 +29,14 @@ public:
   /// particle state may then be non-finite, so "final state" outputs should be skipped.
   virtual void onFinish(const Simulation& sim, bool completed) {}
 
-  /// Whether onStep reads the particles (under ranks, on rank 0's gathered copy unless the
-  /// output steps in parts). Frame formats read them at frames only.
+  /// Whether the output reads the particles after every step (frame formats read them at
+  /// frames only). Such an output steps in parts (io/output/step_parts.h): its per-step work
+  /// needs only exact reductions over the particles. The driver then, after every step, asks
+  /// rank 0 partDue(), calls part() on every process with its own particles when due, and calls
+  /// onStepParts() on rank 0 with every part (none when not due). Without ranks the same calls
+  /// run with one part, so one process writes the same bytes; onStep() is that process's
+  /// shortcut (stepOwnPart). No process gathers every particle after a step.
   virtual bool readsEveryStep() const { return false; }
-  /// Steps in parts (io/output/step_parts.h). An output whose per-step work needs only exact
-  /// reductions over the particles returns true; the driver then, after every step, asks rank 0
-  /// partDue(), calls part() on every process with its own particles when due, and calls
-  /// onStepParts() on rank 0 with every part (none when not due) instead of onStep(). Without
-  /// ranks the same calls run with one part, so one process writes the same bytes.
-  virtual bool stepsInParts() const { return false; }
   /// Before the run on processes other than rank 0: what part() needs (the scene, not particles).
   virtual void prepareParts(const Simulation& sim) {}
   /// After every step, on every process with its own particles, before the parts: what an output

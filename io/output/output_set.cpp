@@ -25,7 +25,6 @@ OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::
   }
   addStepOutputs(o, run, outDir);
   seconds_.assign(outputs_.size(), 0.0);
-  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
 }
 
 void OutputSet::addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir) {
@@ -47,11 +46,9 @@ void OutputSet::addStepOutputs(const OutputSettings& o, const RunContext& run, c
 }
 
 OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, const Simulation& sim) {
-  // The per-step outputs in rank 0's order; whether one reads every particle is decided as there
-  // (every rank then takes part in its gather).
+  // The per-step outputs in rank 0's order.
   addStepOutputs(o, run, "");
-  for (const auto& out : outputs_) readsWhole_ |= out->readsEveryStep() && !out->stepsInParts();
-  outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(), [](const auto& out) { return !out->stepsInParts(); }),
+  outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(), [](const auto& out) { return !out->readsEveryStep(); }),
                  outputs_.end());
   for (auto& out : outputs_) out->prepareParts(sim);
   seconds_.assign(outputs_.size(), 0.0);
@@ -63,7 +60,7 @@ OutputSet::~OutputSet() = default;
 
 template <class F> void OutputSet::eachInParts(F&& f) {
   for (size_t i = 0, k = 0; i < outputs_.size(); ++i) {
-    if (!outputs_[i]->stepsInParts()) continue;
+    if (!outputs_[i]->readsEveryStep()) continue;
     const auto t0 = std::chrono::steady_clock::now();
     f(*outputs_[i], k++);
     seconds_[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -94,7 +91,6 @@ void OutputSet::step(const Simulation& sim) {
   if (due) buffers.emplace_back(mine[0].data(), mine[0].size());
   mergeParts(sim, dt, due, b, buffers);
   mergeResults(sim, false, {}, 1);
-  stepWhole(sim, dt);
 }
 
 double OutputSet::stepTime(const Simulation& sim) {
@@ -110,7 +106,7 @@ void OutputSet::stepLocal(const Simulation& local, double dt) {
 uint32_t OutputSet::partsDue(const Simulation& sim) const {
   uint32_t due = 0, bit = 1;
   for (const auto& out : outputs_)
-    if (out->stepsInParts()) due |= out->partDue(sim) ? bit : 0, bit <<= 1;
+    if (out->readsEveryStep()) due |= out->partDue(sim) ? bit : 0, bit <<= 1;
   return due;
 }
 
@@ -169,7 +165,7 @@ bool OutputSet::byOwner(const OutputObserver& o, int ranks) const { return ranks
 
 bool OutputSet::resultsDue(int ranks) const {
   bool due = false;
-  for (const auto& out : outputs_) due |= out->stepsInParts() && byOwner(*out, ranks) && out->resultDue();
+  for (const auto& out : outputs_) due |= out->readsEveryStep() && byOwner(*out, ranks) && out->resultDue();
   return due;
 }
 
@@ -204,7 +200,7 @@ void OutputSet::mergeResults(const Simulation& sim, bool state, const std::vecto
 
 bool OutputSet::sharesState(int ranks) const {
   bool any = false;
-  for (const auto& out : outputs_) any |= out->stepsInParts() && byOwner(*out, ranks) && out->sharesState();
+  for (const auto& out : outputs_) any |= out->readsEveryStep() && byOwner(*out, ranks) && out->sharesState();
   return any;
 }
 
@@ -223,12 +219,6 @@ std::vector<char> OutputSet::sharedState(int ranks) {
 void OutputSet::takeSharedState(std::string_view rest, int ranks) {
   eachInParts([&](OutputObserver& o, size_t) {
     if (byOwner(o, ranks) && o.sharesState()) o.takeState(takeSized(rest));
-  });
-}
-
-void OutputSet::stepWhole(const Simulation& whole, double dt) {
-  each([&](OutputObserver& o) {
-    if (o.readsEveryStep() && !o.stepsInParts()) o.onStep(whole, dt);
   });
 }
 

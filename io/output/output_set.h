@@ -24,8 +24,9 @@ class OutputSet {
 public:
   /// Constructs only the outputs `settings` asks for. `outDir` must exist.
   OutputSet(const OutputSettings& settings, const RunContext& run, const std::string& outDir);
-  /// Under ranks, on processes other than rank 0: only the outputs that step in parts
-  /// (OutputObserver::stepsInParts), prepared from `sim`'s scene. Touches no file.
+  /// Under ranks, on processes other than rank 0: only the outputs that read the particles after
+  /// every step, which step in parts (OutputObserver::readsEveryStep), prepared from `sim`'s
+  /// scene. Touches no file.
   struct PartsOnly {};
   OutputSet(PartsOnly, const OutputSettings& settings, const RunContext& run, const Simulation& sim);
   ~OutputSet();
@@ -68,9 +69,6 @@ public:
   /// @throw std::runtime_error (takeSharedState) if the buffer does not hold it
   std::vector<char> sharedState(int ranks);
   void takeSharedState(std::string_view buffer, int ranks);
-  void stepWhole(const Simulation& whole, double dt);
-  /// Whether some output reads every particle after every step (the same on every process).
-  bool readsWholeEachStep() const { return readsWhole_; }
   void frame(const Simulation& sim, int index);
   void finish(const Simulation& sim, bool completed);
 
@@ -94,7 +92,6 @@ private:
   /// Whether rank 0 gathers `o`'s state from the others before it saves or ends.
   bool gathersState(const OutputObserver& o, int ranks) const;
   std::vector<std::unique_ptr<OutputObserver>> outputs_;
-  bool readsWhole_ = false;
   bool root_ = true; ///< merges the parts (rank 0, or one process): keeps its own in place
   std::vector<double> seconds_;
   double lastTime_ = 0;

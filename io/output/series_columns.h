@@ -26,15 +26,15 @@ public:
   /// Appends this group's values at a sample; `elapsed` is the time since the previous sample
   /// (0 at the first sample).
   virtual void sample(const Simulation& sim, double elapsed, std::vector<double>& row) = 0;
-  /// How sample() reads the particles. Whole: every particle in one place (under ranks, rank
-  /// 0's gathered copy, every step). Parts: only through part() on each process and
+  /// How sample() reads the particles (every column chooses; none reads them all in one place).
+  /// Parts: only through part() on each process and
   /// sampleParts() merging them exactly (io/output/step_parts.h). Shared: a state that moves
   /// every step by exact sums over every particle (a probe): every process sends its sums to
   /// every process (sharedPart) and each moves its copy alike (sharedStep); sample() reads that
   /// state. None: not at all (figures rank 0 holds itself, such as the collider loads; onStep
   /// must read no particles either).
-  enum class Reads { Whole, Parts, Shared, None };
-  virtual Reads reads() const { return Reads::Whole; }
+  enum class Reads { Parts, Shared, None };
+  virtual Reads reads() const = 0;
   /// Reads::Parts: this process's contribution from its own particles.
   virtual void part(const Simulation& local, const PartBounds& b, std::vector<char>& out) const {}
   /// Reads::Parts and None: the sample from every process's part (rank order). None: sample().

@@ -199,12 +199,6 @@ void TimeSeries::onStart(const Simulation& sim) {
   sample(sim);
 }
 
-bool TimeSeries::stepsInParts() const {
-  for (const auto& c : columns_)
-    if (c->reads() == SeriesColumns::Reads::Whole) return false;
-  return true;
-}
-
 void TimeSeries::stepLocal(const Simulation& local, double dt) {
   for (auto& c : columns_) c->stepLocal(local, dt);
 }
@@ -267,7 +261,7 @@ void TimeSeries::partByOwner(const Simulation& local, const PartBounds& b, int, 
 void TimeSeries::onStepParts(const Simulation& sim, double dt, const PartBounds& b,
                              const std::vector<std::string_view>& parts) {
   lastDt_ = dt;
-  for (auto& c : columns_) c->onStep(sim, dt); // none reads particles (stepsInParts)
+  for (auto& c : columns_) c->onStep(sim, dt); // none reads particles (SeriesColumns::reads)
   if (parts.empty()) return;
   // Each process's part is its columns' parts in turn, each after its length: the Shared
   // columns' first, then, at a row, the Parts columns'.

@@ -30,7 +30,6 @@ public:
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
   /// In parts when no column reads the particles whole (none does now).
-  bool stepsInParts() const override;
   /// By owner when it has probes (Reads::Shared): every process then gets every process's sums
   /// each step and moves its probes alike; only rank 0 makes rows.
   bool partsByOwner() const override { return shared_; }

@@ -36,7 +36,6 @@ public:
   void onStep(const Simulation& sim, double dt) override;
   bool readsEveryStep() const override { return true; }
   /// In parts: each rank's fixed-point water volume and lowest water particle per cell.
-  bool stepsInParts() const override { return true; }
   void prepareParts(const Simulation& sim) override;
   bool partDue(const Simulation&) const override { return !water_.empty(); }
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;

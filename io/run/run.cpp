@@ -235,8 +235,6 @@ void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
   const int n = comm.size();
   std::vector<std::vector<char>> sent = due ? out.parts(*sim_, due, b, comm.rank(), n) : std::vector<std::vector<char>>();
   const std::vector<std::vector<char>> got = due ? comm.exchange(sent) : std::vector<std::vector<char>>();
-  // Only what reads every particle still needs them gathered (positions, velocities, masses).
-  if (out.readsWholeEachStep()) sim_->gatherInto(s.viewed.get(), Simulation::GatherScope::Kinematics);
   // Not the collectives: their time includes waiting for slower ranks.
   const auto o0 = std::chrono::steady_clock::now();
   std::vector<std::string_view> buffers;
@@ -250,7 +248,6 @@ void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
   s.ranks.onRoot([&] {
     const auto o1 = std::chrono::steady_clock::now();
     out.mergeResults(*sim_, false, views(results, counts), n);
-    if (out.readsWholeEachStep()) out.stepWhole(*s.view, dt);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - o1).count();
     s.balance.addOutputSeconds(seconds);
   });
