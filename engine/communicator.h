@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 namespace talus {
@@ -34,6 +36,19 @@ public:
   virtual std::vector<char> allGather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
   /// Collective: every rank's bytes, concatenated in rank order, on rank 0 only (empty elsewhere).
   virtual std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) = 0;
+  /// Collective: every rank's bytes to rank 0 one rank at a time, so it never holds them all at
+  /// once. On rank 0 only: `sized` gets every rank's count first, then `take` each rank's bytes in
+  /// rank order (its own first); the bytes live until `take` returns. Its time is not counted as
+  /// communication. This default gathers them whole.
+  virtual void gatherEach(const std::vector<char>& mine, const std::function<void(const std::vector<size_t>&)>& sized,
+                          const std::function<void(int, std::string_view)>& take) {
+    std::vector<size_t> counts;
+    const std::vector<char> all = gather(mine, counts);
+    if (rank() != 0) return;
+    sized(counts);
+    size_t at = 0;
+    for (int r = 0; r < size(); at += counts[size_t(r)], ++r) take(r, std::string_view(all.data() + at, counts[size_t(r)]));
+  }
   /// Collective: send[r] goes to rank r; returns what each rank sent here (index = source rank).
   virtual std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) = 0;
   /// Bytes this rank has sent to other ranks so far (the halo, migration, gathers).

@@ -113,7 +113,7 @@ void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std
     std::memcpy(out.data() + i * rec + common, state.data() + i * g.stateBytesPerParticle(), g.stateBytesPerParticle());
 }
 
-void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
+void appendParticles(MaterialGroup& g, std::string_view in) {
   const size_t rec = recordBytes(g), common = ParticleSet::bytesPerParticle(), sb = g.stateBytesPerParticle();
   const size_t n = in.size() / rec, base = g.particles.size();
   if (!n) return;

@@ -38,7 +38,10 @@ inline bool treeOrderLess(const BlockCoord& a, const BlockCoord& b) {
 /// Particles idx of g (common arrays and model state) as records of
 /// ParticleSet::bytesPerParticle() + g.stateBytesPerParticle() bytes; and records appended to g.
 void packParticles(const MaterialGroup& g, const std::vector<uint32_t>& idx, std::vector<char>& out);
-void appendParticles(MaterialGroup& g, const std::vector<char>& in);
+void appendParticles(MaterialGroup& g, std::string_view in);
+inline void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
+  appendParticles(g, std::string_view(in.data(), in.size()));
+}
 
 class DomainDecomposition {
 public:

@@ -82,6 +82,21 @@ public:
   virtual void compactState(const std::vector<uint8_t>& keep) = 0;
   /// Initialise model state for particles appended to `particles` (undeformed, unyielded).
   virtual void resizeState(size_t n) = 0;
+  /// The state's room for n particles (reserveState), or none: empty with its memory returned
+  /// (releaseState). Used by reserve() and release() below.
+  virtual void reserveState(size_t n) = 0;
+  virtual void releaseState() = 0;
+  /// Room for n particles with their state: appending up to n (appendParticles) allocates no more.
+  void reserve(size_t n) {
+    particles.reserve(n);
+    reserveState(n);
+  }
+  /// No particles, their memory returned: a copy held only while it is read (rank 0's view of the
+  /// run between the files written from it).
+  void release() {
+    particles.release();
+    releaseState();
+  }
   virtual size_t stateBytesPerParticle() const = 0;
   /// Migration between ranks: the state of particles idx, stateBytesPerParticle() each, into out;
   /// and n such records appended after the last particle.

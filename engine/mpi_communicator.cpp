@@ -121,31 +121,56 @@ public:
     return out;
   }
   std::vector<char> gather(const std::vector<char>& mine, std::vector<size_t>& counts) override {
-    // Point to point in pieces of at most maxMessageBytes: the total may pass 2 GiB (int counts).
-    Stopwatch t(seconds, collectives);
-    uint64_t n = mine.size();
-    std::vector<uint64_t> c(static_cast<size_t>(size_), 0);
-    MPI_Gather(&n, 1, MPI_UINT64_T, c.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-    const size_t piece = std::max<size_t>(1, std::min(maxMessageBytes, size_t(INT_MAX)));
+    std::vector<char> out;
     counts.assign(static_cast<size_t>(size_), 0);
-    if (rank_ != 0) {
-      for (size_t at = 0; at < mine.size(); at += piece)
-        MPI_Send(mine.data() + at, int(std::min(piece, mine.size() - at)), MPI_BYTE, 0, 9, MPI_COMM_WORLD);
-      bytesSent += mine.size();
-      return {};
-    }
-    size_t total = 0;
-    for (int r = 0; r < size_; ++r) total += (counts[size_t(r)] = size_t(c[size_t(r)]));
-    std::vector<char> out(total);
-    std::copy(mine.begin(), mine.end(), out.begin());
-    size_t displ = mine.size();
-    for (int r = 1; r < size_; ++r) {
-      for (size_t at = 0; at < counts[size_t(r)]; at += piece)
-        MPI_Recv(out.data() + displ + at, int(std::min(piece, counts[size_t(r)] - at)), MPI_BYTE, r, 9, MPI_COMM_WORLD,
-                 MPI_STATUS_IGNORE);
-      displ += counts[size_t(r)];
-    }
+    size_t at = 0;
+    gatherEach(
+        mine,
+        [&](const std::vector<size_t>& c) {
+          counts = c;
+          size_t total = 0;
+          for (size_t n : c) total += n;
+          out.resize(total);
+        },
+        [&](int, std::string_view part) {
+          std::copy(part.begin(), part.end(), out.begin() + long(at));
+          at += part.size();
+        });
     return out;
+  }
+  void gatherEach(const std::vector<char>& mine, const std::function<void(const std::vector<size_t>&)>& sized,
+                  const std::function<void(int, std::string_view)>& take) override {
+    // Point to point in pieces of at most maxMessageBytes: a rank's part may pass 2 GiB (int counts).
+    double handling = 0; // rank 0's time in sized and take: not communication
+    {
+      Stopwatch t(seconds, collectives);
+      uint64_t n = mine.size();
+      std::vector<uint64_t> c(static_cast<size_t>(size_), 0);
+      MPI_Gather(&n, 1, MPI_UINT64_T, c.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+      const size_t piece = std::max<size_t>(1, std::min(maxMessageBytes, size_t(INT_MAX)));
+      if (rank_ != 0) {
+        for (size_t at = 0; at < mine.size(); at += piece)
+          MPI_Send(mine.data() + at, int(std::min(piece, mine.size() - at)), MPI_BYTE, 0, 9, MPI_COMM_WORLD);
+        bytesSent += mine.size();
+        return;
+      }
+      auto timed = [&](auto&& f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        handling += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      };
+      timed([&] { sized(std::vector<size_t>(c.begin(), c.end())); });
+      timed([&] { take(0, std::string_view(mine.data(), mine.size())); });
+      std::vector<char> part; // one rank's bytes at a time
+      for (int r = 1; r < size_; ++r) {
+        part.resize(size_t(c[size_t(r)]));
+        for (size_t at = 0; at < part.size(); at += piece)
+          MPI_Recv(part.data() + at, int(std::min(piece, part.size() - at)), MPI_BYTE, r, 9, MPI_COMM_WORLD,
+                   MPI_STATUS_IGNORE);
+        timed([&] { take(r, std::string_view(part.data(), part.size())); });
+      }
+    }
+    seconds -= handling;
   }
   std::vector<std::vector<char>> exchange(std::vector<std::vector<char>>& send) override {
     Stopwatch t(seconds, collectives);

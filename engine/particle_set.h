@@ -28,6 +28,14 @@ struct ParticleSet {
   void resize(size_t n) {
     forEachArray([n](auto& a) { a.resize(n); });
   }
+  /// Room for n particles, so appending up to n allocates nothing more.
+  void reserve(size_t n) {
+    forEachArray([n](auto& a) { a.reserve(n); });
+  }
+  /// Empty, with the arrays' memory returned (resize(0) keeps it).
+  void release() {
+    forEachArray([](auto& a) { std::decay_t<decltype(a)>().swap(a); });
+  }
   static constexpr size_t bytesPerParticle() {
     return 2 * sizeof(Vec3) + sizeof(Mat3) + sizeof(Sym3) + sizeof(Real);
   }

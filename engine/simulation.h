@@ -132,7 +132,14 @@ public:
   /// every rank's particles in one process's order, the clock, counters, loads and mass ledger,
   /// so outputs written from it are one process's files. Other ranks pass null. The per-step
   /// outputs never need it (they step in parts); frames, checkpoints and the end's files do.
+  /// Rank 0 appends one rank's particles at a time into arrays sized for all: it holds the run
+  /// once (plus one rank's part in flight), not also in a gathered buffer.
   void gatherInto(Simulation* view);
+  /// Every group empty, its memory returned (MaterialGroup::release): a view between the files
+  /// written from it, so rank 0 holds every particle only while it writes (gatherInto refills it).
+  void releaseParticles() {
+    for (MaterialGroup* g : groupPtrs_) g->release();
+  }
   /// Particles on all ranks (this process's count without ranks).
   size_t globalParticleCount() const;
 

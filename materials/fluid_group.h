@@ -102,6 +102,8 @@ public:
   }
   void compactState(const std::vector<uint8_t>& keep) override { compactInPlace(dJ, keep); }
   void resizeState(size_t n) override { dJ.resize(n, 0.0f); }
+  void reserveState(size_t n) override { dJ.reserve(n); }
+  void releaseState() override { decltype(dJ)().swap(dJ); }
   size_t stateBytesPerParticle() const override { return sizeof(float); }
   void packState(const std::vector<uint32_t>& idx, char* out) const override { packRecords(idx, out, dJ); }
   void appendState(const char* in, size_t n) override { appendRecords(in, n, dJ); }

@@ -60,6 +60,14 @@ public:
     F.resize(n, Mat3::Identity());
     state.resize(n, initialState);
   }
+  void reserveState(size_t n) override {
+    F.reserve(n);
+    state.reserve(n);
+  }
+  void releaseState() override {
+    decltype(F)().swap(F);
+    decltype(state)().swap(state);
+  }
   void packState(const std::vector<uint32_t>& idx, char* out) const override { packRecords(idx, out, F, state); }
   void appendState(const char* in, size_t n) override { appendRecords(in, n, F, state); }
   /// "pressure" (Cauchy, Pa, compression positive) and the model's own state variables.

@@ -66,6 +66,15 @@ struct Run::State {
   int frame = 0;
   double interval, checkpointEvery;
   double nextCheckpoint = std::numeric_limits<double>::infinity();
+
+  /// Collective under ranks: rank 0's view gets every particle, for files written from it; the
+  /// view holds them only until releaseView, so between writes rank 0 holds its own share.
+  void gatherView(Simulation& sim) {
+    if (ranks.active()) sim.gatherInto(viewed.get());
+  }
+  void releaseView() {
+    if (viewed) viewed->releaseParticles();
+  }
 };
 
 Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>(scene, opt)) {
@@ -124,7 +133,7 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       // Each rank seeded its part (unless resumed: then every rank read every particle).
       const bool seededInParts = scene.seedSlice.active() && !opt.resume;
       sim_->distribute(opt.ranks, 0.1, seededInParts ? &scene.seedSlice.index : nullptr);
-      sim_->gatherInto(s.viewed.get());
+      s.releaseView(); // its whole initial state served the outputs' start and frame 0
       shareOutputState();
     }
     s.bar = std::make_unique<ProgressBar>(endTime_, stderr, opt.progress && s.ranks.root());
@@ -132,6 +141,13 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
 }
 
 Run::~Run() = default;
+
+size_t Run::viewCapacity() const {
+  size_t n = 0;
+  if (s_->viewed)
+    for (const MaterialGroup* g : s_->viewed->groups()) n += g->particles.x.capacity();
+  return n;
+}
 
 bool Run::step() {
   if (ended_) return false;
@@ -151,8 +167,9 @@ bool Run::step() {
         // 3 * 0.1 > 0.3 in floating point: the frame is due when the target is within rounding
         // of its time.
         if (sim_->time() >= target && s.interval > 0 && target >= frameTime - 1e-9 * s.interval) {
-          if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+          s.gatherView(*sim_);
           s.ranks.onRoot([&] { s.outputs->frame(*s.view, s.frame); });
+          s.releaseView();
           ++s.frame;
         }
       }
@@ -279,7 +296,7 @@ void Run::gatherOutputState() {
 void Run::checkpoint() {
   State& s = *s_;
   guarded([&] {
-    if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    s.gatherView(*sim_);
     gatherOutputState();
     s.ranks.onRoot([&] {
       writeCheckpoint(s.checkpointFile, *s.view, s.identity, [&](StateArchive& a) {
@@ -290,6 +307,8 @@ void Run::checkpoint() {
       });
     });
     res_.checkpointTime = sim_->time();
+    // Interrupted, the end's summary is written from this view next (finish).
+    if (res_.status != RunStatus::Interrupted) s.releaseView();
   });
 }
 
@@ -308,7 +327,7 @@ void Run::finish() {
   s.bar->finish();
   const bool interrupted = res_.status == RunStatus::Interrupted;
   if (!interrupted) {
-    if (s.ranks.active()) sim_->gatherInto(s.viewed.get());
+    s.gatherView(*sim_);
     gatherOutputState();
     s.ranks.onRoot([&] {
       s.outputs->finish(*s.view, res_.status == RunStatus::Completed);

@@ -43,6 +43,11 @@ public:
 
   bool ended() const { return ended_; }
   const Simulation& simulation() const { return *sim_; }
+  /// Under ranks, on rank 0: how many particles its view of the whole run has room for. It is
+  /// filled to write a frame, a checkpoint or the end's files and emptied after them (after the
+  /// end it keeps the final state), so between writes rank 0 holds its own share of the
+  /// particles. 0 on the other ranks and in one process (the simulation is its own view).
+  size_t viewCapacity() const;
   double endTime() const { return endTime_; }
   /// The result so far; complete once ended().
   const RunResult& result() const { return res_; }

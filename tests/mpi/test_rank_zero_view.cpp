@@ -1,0 +1,90 @@
+// Rank 0's view of the run (io/run/run.cpp, Simulation::gatherInto): the particles of every rank
+// come to it one rank at a time, into arrays sized for all of them, and it holds them only while
+// files are written from it. Run under mpirun with the other MPI tests (tests/CMakeLists.txt).
+#include "engine/simulation.h"
+#include "io/run/run.h"
+#include "io/scene/scene.h"
+#include "small_collapse.h"
+#include "world.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <gtest/gtest.h>
+
+using namespace talus;
+using talus::test::world;
+
+TEST(RankZero, AGatherLargerThanOneMessageArrivesOneRankAtATimeInRankOrder) {
+  // Rank 0's view of a large run passes MPI's 2 GiB int counts; here the pieces are 1000 bytes.
+  const size_t keep = world->maxMessageBytes;
+  world->maxMessageBytes = 1000;
+  std::vector<char> mine(size_t(10007 + 3 * world->rank()));
+  for (size_t i = 0; i < mine.size(); ++i) mine[i] = char((i * 7 + size_t(world->rank())) % 251);
+  std::vector<size_t> counts;
+  int next = 0;
+  world->gatherEach(
+      mine, [&](const std::vector<size_t>& c) { counts = c; },
+      [&](int r, std::string_view part) {
+        ASSERT_EQ(r, next++) << "the ranks' parts come in rank order";
+        ASSERT_EQ(counts.size(), size_t(world->size())) << "the counts come first";
+        ASSERT_EQ(part.size(), counts[size_t(r)]);
+        ASSERT_EQ(part.size(), size_t(10007 + 3 * r));
+        for (size_t i = 0; i < part.size(); ++i) ASSERT_EQ(part[i], char((i * 7 + size_t(r)) % 251)) << r << " " << i;
+      });
+  // gather() is the same exchange, its parts put end to end.
+  const std::vector<char> all = world->gather(mine, counts);
+  world->maxMessageBytes = keep;
+  if (world->rank() != 0) {
+    EXPECT_EQ(next, 0) << "only rank 0 takes parts";
+    EXPECT_TRUE(all.empty());
+    return;
+  }
+  EXPECT_EQ(next, world->size());
+  size_t at = 0;
+  for (int r = 0; r < world->size(); ++r) {
+    ASSERT_EQ(counts[size_t(r)], size_t(10007 + 3 * r));
+    for (size_t i = 0; i < counts[size_t(r)]; ++i) ASSERT_EQ(all[at + i], char((i * 7 + size_t(r)) % 251)) << r << " " << i;
+    at += counts[size_t(r)];
+  }
+  EXPECT_EQ(at, all.size());
+}
+
+// The view is filled for frames (every 0.04 s), checkpoints (every 0.03 s) and the end, and
+// empty between them: rank 0 then holds its own share of the particles, not the whole run too.
+TEST(RankZero, HoldsEveryParticleOnlyWhileItWrites) {
+  std::string scene = test::kSmallCollapse;
+  scene.replace(scene.find("end_time = 1"), 12, "end_time = 0.1");
+  scene += R"(
+[output]
+frame_interval = 0.04
+checkpoint_interval = 0.03
+)";
+  const auto dir = std::filesystem::temp_directory_path() / ("talus_test_rank_zero_view_" + std::to_string(world->size()));
+  if (world->rank() == 0) std::filesystem::remove_all(dir); // only rank 0 writes
+  auto load = [&] { return loadSceneString(scene, "collapse.toml", {}); };
+  RunOptions opt;
+  opt.outDir = dir.string();
+  opt.threads = 1;
+  opt.progress = false;
+  opt.ranks = world;
+  opt.viewScene = load;
+  talus::Run run(load(), opt);
+  const bool root = world->rank() == 0;
+  EXPECT_EQ(run.viewCapacity(), 0u) << "after the start's frame the view is emptied";
+  int steps = 0;
+  while (run.step())
+    if (++steps, root && run.viewCapacity() != 0) {
+      ADD_FAILURE() << "the view holds " << run.viewCapacity() << " particles between writes, after step " << steps;
+      break; // not return: every rank must step to the end together
+    }
+  ASSERT_EQ(run.result().status, RunStatus::Completed);
+  const size_t all = run.simulation().globalParticleCount();
+  if (!root) return;
+  // The end's files were written from a view of exactly every particle: sized once for all of
+  // them, not grown by doubling as each rank's part came in.
+  EXPECT_EQ(run.viewCapacity(), all);
+  EXPECT_GT(all, 12000u);
+  const auto& files = run.result().files;
+  EXPECT_NE(std::find(files.begin(), files.end(), "frames/particles_00002.h5"), files.end()) << "frames were written";
+  EXPECT_GE(run.result().checkpointTime, 0.06) << "checkpoints were written";
+}
