@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <malloc.h>
 #include <optional>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -86,6 +87,12 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   sim_ = std::make_unique<Simulation>(scene.settings, std::move(scene.groups));
   // With ranks, rank 0 writes every output from a view of the whole run (Simulation::gatherInto).
   if (s.ranks.active() && s.ranks.root()) {
+    // The view's arrays are freed after every write (State::releaseView). glibc raises its mmap
+    // threshold to the size of a freed block (up to 32 MB), so its later blocks of that size,
+    // the steps' own buffers among them, would come from a heap it trims and grows again: rank
+    // 0's steps took 8 % longer (docs/scaling.md, "Rank 0's view"). A threshold set once is not
+    // moved, and the view's arrays stay mapped apart, returned whole when freed.
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024); // glibc's default
     SceneSetup again = opt.viewScene();
     s.viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
   }
