@@ -30,8 +30,8 @@ public:
   std::string name() const override { return "avaframe_run_files"; }
   void onStart(const Simulation& sim) override;
   void onStep(const Simulation& sim, double dt) override;
-  bool readsEveryStep() const override { return true; }
   /// In parts (the particles' mass and the erodible covers' columns, io/output/step_parts.h).
+  bool readsEveryStep() const override { return true; }
   void prepareParts(const Simulation& sim) override { entrained_.prepareParts(sim); }
   bool partDue(const Simulation& sim) const override;
   void part(const Simulation& local, const PartBounds& b, bool keep, std::vector<char>& out) override;
