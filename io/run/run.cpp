@@ -88,10 +88,10 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   // With ranks, rank 0 writes every output from a view of the whole run (Simulation::gatherInto).
   if (s.ranks.active() && s.ranks.root()) {
     // The view's arrays are freed after every write (State::releaseView). glibc raises its mmap
-    // threshold to the size of a freed block (up to 32 MB), so its later blocks of that size,
-    // the steps' own buffers among them, would come from a heap it trims and grows again: rank
-    // 0's steps took 8 % longer (docs/scaling.md, "Rank 0's view"). A threshold set once is not
-    // moved, and the view's arrays stay mapped apart, returned whole when freed.
+    // threshold to the size of a freed block (up to 32 MB), so later blocks of that size, the
+    // steps' own buffers among them, come from its heap instead: rank 0's steps took 8 % longer
+    // (docs/scaling.md, "Rank 0's view"). A threshold set once is not moved, and the view's
+    // arrays stay mapped apart, returned whole when freed.
     mallopt(M_MMAP_THRESHOLD, 128 * 1024); // glibc's default
     SceneSetup again = opt.viewScene();
     s.viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
