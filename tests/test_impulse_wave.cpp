@@ -46,3 +46,43 @@ TEST(ImpulseWave, ASlideIntoAFlumeMakesTheWaveHellerAndHagerFoundBeyondTheSlide)
   EXPECT_LT(w.aM / w.aMRef, 2.0);
   EXPECT_LT(w.lostWater, 0.01);
 }
+
+// The spatial case: a slide two depths wide (B = 2, P = 1.39, alpha = 45 degrees) into a basin 9 h
+// across, mirrored about its axis, at h/dx 4 (39 000 particles), against Evers et al. (2019)'s
+// first crest a_c1(r, gamma) (tools/validation_impulse_wave.cpp; h/dx 4, 6 and 9 in
+// docs/impulse_waves.md). The crests do not converge: on the axis at r = 4.5 h they read -21 %,
+// +7 % and +47 % of a_c1 at h/dx 4, 6 and 9 (the far ones, 0.05-0.1 h, fade below half a cell
+// at h/dx 4). So agreement at one resolution is no evidence, and the crest below is pinned at
+// what h/dx 4 gives. Asserted:
+//  - the first crest's speed on the axis between r = 4.5 and 7.5 h against the relations'
+//    c_c1 = 0.95 sqrt(g (h + a_c1)): 10 % (measured +3 %; a celerity, which the coarse grid's
+//    damping biases little);
+//  - the wave's spreading at r = 4.5 h: the crest at 60 degrees over the crest on the axis against
+//    the relations' ratio, 25 % (measured +10 %; +2 % at h/dx 6, -7 % at 9);
+//  - the crest on the axis at r = 4.5 h against a_c1: 30 % (measured -21 %; a pin against change,
+//    not the 20 %, which no resolution here meets for every gauge);
+//  - the water stays in the basin (under 1 % thrown out).
+TEST(ImpulseWave, ASlideNarrowerThanTheBasinSpreadsItsWaveAsTheSpatialRelationsSay) {
+  validation::Resolution r;
+  r.cells = 4;
+  const auto w = validation::impulseWave3d(r);
+  std::printf("P %.3f, c %.0f m/s, a_0,c1/h %.3f; %zu particles, %llu steps, %.1f s\n", w.P, w.soundSpeed, w.a0,
+              w.particles, w.steps, w.wallSeconds);
+  auto at = [&](double rh, double deg) {
+    for (const auto& g : w.gauges)
+      if (g.r == rh && g.gammaDeg == deg) return g;
+    ADD_FAILURE() << "no gauge at r/h " << rh << ", " << deg << " degrees";
+    return validation::ImpulseWave3dGauge{};
+  };
+  for (const auto& g : w.gauges)
+    std::printf("  r/h %.1f, %2.0f degrees: a_c1/h %.3f at T %.2f (relations %.3f)\n", g.r, g.gammaDeg, g.crest,
+                g.crestT, g.ref);
+  const auto near = at(4.5, 0), far = at(7.5, 0), side = at(4.5, 60);
+  const double speed = (far.r - near.r) / (far.crestT - near.crestT);
+  const double celerity = 0.95 * std::sqrt(1 + 0.5 * (near.ref + far.ref));
+  std::printf("  crest speed on the axis %.3f sqrt(gh) (relations %.3f)\n", speed, celerity);
+  EXPECT_NEAR(speed / celerity, 1.0, 0.10);
+  EXPECT_NEAR(near.crest / near.ref, 1.0, 0.30);
+  EXPECT_NEAR((side.crest / near.crest) / (side.ref / near.ref), 1.0, 0.25);
+  EXPECT_LT(w.lostWater, 0.01);
+}

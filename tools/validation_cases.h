@@ -156,6 +156,28 @@ struct ImpulseWaveResult : RunCost {
 /// Runs one configuration; r.soundSpeed overrides the water's c (default max(160 sqrt(gh), 8 V_s)).
 ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r);
 
+/// One gauge of the spatial case (impulseWave3d).
+struct ImpulseWave3dGauge {
+  double r = 0, gammaDeg = 0; ///< radial distance from the impact point / h, angle off the slide's axis
+  double crest = 0, crestT = 0; ///< the first crest a_c1 / h (0: none above 0.02 h) and its T
+  double ref = 0;               ///< Evers et al. (2019)'s a_c1 / h there; 0 inside the impact zone
+};
+struct ImpulseWave3dResult : RunCost {
+  double P = 0, B = 0, soundSpeed = 0;
+  double a0 = 0; ///< the relations' initial first-crest amplitude a_0,c1 / h
+  double impactRadius0 = 0, impactRadius90 = 0; ///< the impact zone's radius r_0 / h at 0 and 90 degrees
+  std::vector<ImpulseWave3dGauge> gauges;
+  /// Mean |a_c1 / ref - 1| over the gauges beyond the impact zone: all of them, those on the
+  /// slide's axis, and those 30 and 60 degrees off it (the wave's spreading).
+  double error = 0, axisError = 0, offAxisError = 0;
+  double lostWater = 0;
+};
+/// A granular slide (P 1.39, alpha 45 degrees, F 2.5, S 0.4, M 0.97) two depths wide (B = 2) into
+/// a basin 9 h across, mirrored about the slide's axis; the first crest at r/h = 3, 4.5, 6, 7.5
+/// and 0, 30, 60 degrees against Evers, Heller, Fuchs, Hager & Boes (2019, VAW-Mitteilung 254),
+/// the successor of Heller & Hager's manual. r.cells: cells across the depth h.
+ImpulseWave3dResult impulseWave3d(const Resolution& r);
+
 /// A one-cell-thick elastic layer (dx = 5 m, one particle per cell, 5 m thick at z = 500 m) over
 /// a layerSide square in a domainSide x domainSide x domainHeight box: what the sparse grid must
 /// store in proportion to the layer, not the box (test_sparse_grid, `talus work-precision`).

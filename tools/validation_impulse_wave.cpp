@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace talus::validation {
@@ -25,8 +26,11 @@ constexpr double kSlideFrictionAngle = 43, kBedFriction = 0.4452; // tan 24 degr
 /// beyond the last so the far wall's reflection reaches it after the leading wave has passed.
 constexpr double kFirstGauge = 1, kGaugeStep = 0.5, kLastGauge = 15, kFlumeBeyond = 5;
 
+/// The basin: x from the ramp's top to xMax, y from the slip wall at 0 to width, the still-water
+/// shoreline at x = shore. The slide spans y in [0, slideWidth]: the flume's whole width, or in a
+/// basin half a slide whose other half the wall at y = 0 mirrors.
 struct Layout {
-  double dx, width, shore, xMax, zMax;
+  double dx, width, slideWidth, shore, xMax, zMax;
 };
 
 std::string flumeScene(const ImpulseWaveCase& c, const Layout& l, double soundSpeed) {
@@ -77,8 +81,8 @@ rotation = [0, %.9g, 0]
 velocity = [%.9g, 0, %.9g]
 )",
                 l.dx, l.xMax, l.width, l.zMax, kBedFriction, l.shore, h, sa, ca, kBedFriction, kWaterDensity,
-                soundSpeed, kSlideDensity, kSlideFrictionAngle, l.xMax, l.width, h, cx, 0.5 * l.width, cz, L,
-                l.width, s, c.alphaDeg, V * ca, -V * sa);
+                soundSpeed, kSlideDensity, kSlideFrictionAngle, l.xMax, l.width, h, cx, 0.5 * l.slideWidth, cz, L,
+                l.slideWidth, s, c.alphaDeg, V * ca, -V * sa);
 }
 
 /// The leading wave at one gauge from its surface record eta (/h) at times T: its largest crest,
@@ -114,6 +118,55 @@ GaugeWave leadingWave(const std::vector<double>& T, const std::vector<double>& e
   return w;
 }
 
+/// The first crest of a surface record (/h): from the first reading above `rise` to the next
+/// down-crossing, its largest value and time; zero when the water never rose that far.
+GaugeWave firstCrest(const std::vector<double>& T, const std::vector<double>& eta, double rise) {
+  GaugeWave w;
+  size_t i = 0;
+  while (i < eta.size() && !(eta[i] > rise)) ++i;
+  for (; i < eta.size() && !(eta[i] <= 0); ++i)
+    if (eta[i] > w.crest) w.crest = eta[i], w.crestT = T[i];
+  return w;
+}
+
+/// Every gauge's record, eta / h every 0.05 in T = t sqrt(g/h).
+struct GaugeRecords {
+  std::vector<double> T;
+  std::vector<std::vector<double>> eta;
+};
+
+/// Steps sim to endT, reading the water surface at every gauge (still water: z = h). NaN where
+/// slide material lies under the gauge (it reads the slide's bulge with the water on it, not a
+/// wave: the experiments' gauges stood beyond the slide's reach) and once `reflected(k, T)` says a
+/// wall's reflection may have come back to gauge k. `onStep` runs after every step.
+GaugeRecords recordGauges(Simulation& sim, const std::vector<GaugeSpec>& gauges, double spacing, double endT,
+                          const std::function<bool(size_t, double)>& reflected, const std::function<void()>& onStep) {
+  WaterGauges reader(gauges, {"water"}, spacing), slideReader(gauges, {"slide"}, spacing);
+  reader.onStart(sim);
+  slideReader.onStart(sim);
+  GaugeRecords rec;
+  rec.eta.resize(gauges.size());
+  const double tScale = std::sqrt(kG / kDepth);
+  for (int i = 0; 0.05 * i <= endT; ++i) {
+    sim.advanceTo(0.05 * i / tScale, onStep);
+    rec.T.push_back(0.05 * i);
+    const std::vector<double> z = reader.surfaces(sim), slide = slideReader.surfaces(sim);
+    for (size_t k = 0; k < z.size(); ++k) {
+      const bool cut = reflected(k, rec.T.back()) || std::isfinite(slide[k]);
+      rec.eta[k].push_back(cut ? std::numeric_limits<double>::quiet_NaN() : (z[k] - kDepth) / kDepth);
+    }
+  }
+  return rec;
+}
+
+/// The softened water's c. The wave depends on it far beyond the 10 times the flow's speed that
+/// serves a dam break: in p09_a45 at h/dx 8 the far-field heights' error against Heller & Hager
+/// falls 43 / 30 / 17 / 3.5 % at c = 20 / 40 / 80 / 160 sqrt(gh) (13 to 106 V_s;
+/// docs/impulse_waves.md). 160 sqrt(gh) is the default (272 m/s here).
+double soundSpeedOf(const Resolution& r, double slideSpeed) {
+  return r.soundSpeed > 0 ? r.soundSpeed : std::max(160 * std::sqrt(kG * kDepth), 8 * slideSpeed);
+}
+
 } // namespace
 
 double ImpulseWaveCase::M() const { return kSlideDensity * S * slideLength / kWaterDensity; }
@@ -137,17 +190,13 @@ ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r) {
   const double h = kDepth, dx = h / r.cells, V = c.F * std::sqrt(kG * h);
   const double a = c.alphaDeg * M_PI / 180, s = c.S * h, L = c.slideLength * h;
   Layout l;
-  l.dx = dx, l.width = 2 * dx;
+  l.dx = dx, l.width = l.slideWidth = 2 * dx;
   l.shore = L * std::cos(a) + 3 * dx;
   l.xMax = l.shore + (kLastGauge + kFlumeBeyond) * h;
   l.zMax = std::max(h + L * std::sin(a) + s * std::cos(a) + 3 * dx, 4 * h);
   ImpulseWaveResult res;
   res.P = c.P();
-  // The wave the slide makes depends on the softened water's c far beyond the 10 times the
-  // flow's speed that serves a dam break: in p09_a45 at h/dx 8 the far-field heights' error
-  // against Heller & Hager falls 43 / 30 / 17 / 3.5 % at c = 20 / 40 / 80 / 160 sqrt(gh)
-  // (13 to 106 V_s; docs/impulse_waves.md). 160 sqrt(gh) is the default (272 m/s here).
-  res.soundSpeed = r.soundSpeed > 0 ? r.soundSpeed : std::max(160 * std::sqrt(kG * h), 8 * V);
+  res.soundSpeed = soundSpeedOf(r, V);
   auto sim = build(flumeScene(c, l, res.soundSpeed), r, res);
 
   std::vector<GaugeSpec> gauges;
@@ -155,20 +204,11 @@ ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r) {
     res.X.push_back(X);
     gauges.push_back({format("x%g", X), Eigen::Vector2d(l.shore + X * h, 0.5 * l.width), dx});
   }
-  const double spacing = dx / std::cbrt(double(r.particlesPerCell));
-  WaterGauges reader(gauges, {"water"}, spacing);
-  reader.onStart(*sim);
-  // The same gauges reading the slide: a gauge over slide material reads the slide's bulge with
-  // the water on it, not a wave (the experiments' gauges stood beyond the slide's reach).
-  WaterGauges slideReader(gauges, {"slide"}, spacing);
-  slideReader.onStart(*sim);
   const double water0 = sim->groupSums()[0].mass;
 
   // Long enough for the leading wave's trough to pass the last gauge (crest near T = X, the
   // trough half a period T_M later).
-  const double tScale = std::sqrt(kG / h), endT = kLastGauge + 2 + 6 * std::sqrt(res.P);
-  std::vector<double> T;
-  std::vector<std::vector<double>> eta(gauges.size());
+  const double endT = kLastGauge + 2 + 6 * std::sqrt(res.P);
   const auto t0 = Clock::now();
   // The slide's centroid along the ramp's downslope direction, from its start (-L/2 from the
   // shoreline), and its mean velocity there, every step until it passes the shoreline.
@@ -186,24 +226,17 @@ ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r) {
     if (std::isnan(start)) start = along / m;
     if (along / m - start >= 0.5 * L) res.centroidSpeedRatio = mv.dot(down) / m / V;
   };
-  for (int i = 0; 0.05 * i <= endT; ++i) {
-    sim->advanceTo(0.05 * i / tScale, onStep);
-    T.push_back(0.05 * i);
-    const std::vector<double> z = reader.surfaces(*sim), slide = slideReader.surfaces(*sim);
-    for (size_t k = 0; k < z.size(); ++k) {
-      // The far wall's reflection (at X = kLastGauge + kFlumeBeyond) returns to gauge X no sooner
-      // than (2 X_wall - X) / 1.3 in T (1.3: a solitary wave of a / h = 0.7 moves at 1.3 sqrt(gh)).
-      const bool reflected = T.back() > (2 * (kLastGauge + kFlumeBeyond) - res.X[k]) / 1.3;
-      const bool overSlide = std::isfinite(slide[k]);
-      eta[k].push_back(reflected || overSlide ? std::numeric_limits<double>::quiet_NaN() : (z[k] - h) / h);
-    }
-  }
+  // The far wall's reflection (at X = kLastGauge + kFlumeBeyond) returns to gauge X no sooner than
+  // (2 X_wall - X) / 1.3 in T (1.3: a solitary wave of a / h = 0.7 moves at 1.3 sqrt(gh)).
+  auto reflected = [&](size_t k, double T) { return T > (2 * (kLastGauge + kFlumeBeyond) - res.X[k]) / 1.3; };
+  const GaugeRecords rec =
+      recordGauges(*sim, gauges, dx / std::cbrt(double(r.particlesPerCell)), endT, reflected, onStep);
   finish(*sim, t0, res);
   res.lostWater = 1 - sim->groupSums()[0].mass / water0;
 
   size_t kM = 0;
   for (size_t k = 0; k < gauges.size(); ++k) {
-    const GaugeWave w = leadingWave(T, eta[k]);
+    const GaugeWave w = leadingWave(rec.T, rec.eta[k]);
     res.crest.push_back(w.crest), res.height.push_back(w.crest - w.trough), res.crestT.push_back(w.crestT);
     res.aM = std::max(res.aM, w.crest);
     if (res.height[k] > res.height[kM]) kM = k;
@@ -221,6 +254,74 @@ ImpulseWaveResult impulseWave(const ImpulseWaveCase& c, const Resolution& r) {
   }
   res.decayError = n > 0 ? res.decayError / n : 0.0;
   res.decayExponent = n > 1 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.0;
+  return res;
+}
+
+ImpulseWave3dResult impulseWave3d(const Resolution& r) {
+  // Evers, Heller, Fuchs, Hager & Boes (2019), VAW-Mitteilung 254, Eqs. 3.22-3.31 (spatial case),
+  // with alpha_eff = 6 alpha / 7. The configuration lies inside their Table 3-3 ranges: F 2.5
+  // (0.4-3.4), S 0.4 (0.15-0.6), M 0.97 (0.25-1.0), V = s L / h^2 0.6 (0.187-0.75), D 1.62
+  // (0.59-1.72), B 2 (0.83-5), P 1.39 (0.13-2.08), alpha 45 (30-90), r/h 3-7.5 (1-16).
+  const ImpulseWaveCase c{"3d_p14_a45_b2", 45, 2.5, 0.4, 1.5};
+  const double B = 2, h = kDepth, dx = h / r.cells, V = c.F * std::sqrt(kG * h);
+  const double a = c.alphaDeg * M_PI / 180, cosEff = std::cos(6.0 / 7.0 * a);
+  ImpulseWave3dResult res;
+  res.P = c.P(), res.B = B;
+  res.a0 = 0.20 * std::sqrt(res.P) * std::pow(B, 0.75) * std::pow(cosEff, 0.25);
+  res.impactRadius0 = 2.5 * std::pow(res.P * B * cosEff, 0.25);
+  res.impactRadius90 = B / 2 + 1.5 * std::pow(res.P * cosEff, 0.25);
+  auto impactRadius = [&](double g) {
+    const double r0 = res.impactRadius0, r9 = res.impactRadius90;
+    return std::sqrt(r0 * r0 * r9 * r9 / (r0 * r0 * std::pow(std::sin(g), 2) + r9 * r9 * std::pow(std::cos(g), 2)));
+  };
+  // Half the basin: the slip wall at y = 0 mirrors the slide's other half. Gauges at r/h 3-7.5
+  // from the impact point (the shoreline on the slide's axis), the walls 1.5 h beyond the last.
+  constexpr double kReach = 9;
+  Layout l;
+  l.dx = dx, l.width = kReach * h, l.slideWidth = 0.5 * B * h;
+  l.shore = c.slideLength * h * std::cos(a) + 3 * dx;
+  l.xMax = l.shore + kReach * h;
+  l.zMax = 4 * h;
+  res.soundSpeed = soundSpeedOf(r, V);
+  auto sim = build(flumeScene(c, l, res.soundSpeed), r, res);
+  std::vector<GaugeSpec> gauges;
+  for (double rh : {3.0, 4.5, 6.0, 7.5})
+    for (double deg : {0.0, 30.0, 60.0}) {
+      const double g = deg * M_PI / 180;
+      // On the axis the gauge's footprint (half-width dx) lies against the mirror wall.
+      const Eigen::Vector2d at(l.shore + rh * h * std::cos(g), std::max(rh * h * std::sin(g), dx));
+      gauges.push_back({format("r%g_g%g", rh, deg), at, dx});
+      res.gauges.push_back({rh, deg});
+    }
+  const double water0 = sim->groupSums()[0].mass;
+  const auto t0 = Clock::now();
+  // A wall's reflection reaches gauge k no sooner than the path from the impact point to the
+  // gauge's mirror image across it, at 1.3 sqrt(gh).
+  auto reflected = [&](size_t k, double T) {
+    const Eigen::Vector2d p = (gauges[k].point - Eigen::Vector2d(l.shore, 0)) / h;
+    const double far = std::hypot(2 * (l.xMax - l.shore) / h - p.x(), p.y());
+    const double side = std::hypot(p.x(), 2 * l.width / h - p.y());
+    return T > std::min(far, side) / 1.3;
+  };
+  const GaugeRecords rec =
+      recordGauges(*sim, gauges, dx / std::cbrt(double(r.particlesPerCell)), 12, reflected, [] {});
+  finish(*sim, t0, res);
+  res.lostWater = 1 - sim->groupSums()[0].mass / water0;
+  double n[2] = {0, 0};
+  for (size_t k = 0; k < gauges.size(); ++k) {
+    ImpulseWave3dGauge& gk = res.gauges[k];
+    const GaugeWave w = firstCrest(rec.T, rec.eta[k], 0.02);
+    gk.crest = w.crest, gk.crestT = w.crestT;
+    const double g = gk.gammaDeg * M_PI / 180, rs = gk.r - impactRadius(g); // r* / h
+    if (rs <= 0) continue; // inside the impact zone the relations say nothing
+    gk.ref = res.a0 * std::exp(-0.4 * std::pow(res.a0, -0.3) * std::sqrt(rs)) *
+             std::pow(1 / std::cosh(3.2 * gk.gammaDeg / 90), cosEff * std::exp(-0.15 * std::sqrt(rs)));
+    const int i = gk.gammaDeg == 0 ? 0 : 1;
+    const double e = std::abs(gk.crest / gk.ref - 1);
+    (i == 0 ? res.axisError : res.offAxisError) += e, res.error += e, n[i] += 1;
+  }
+  res.error /= std::max(n[0] + n[1], 1.0);
+  res.axisError /= std::max(n[0], 1.0), res.offAxisError /= std::max(n[1], 1.0);
   return res;
 }
 

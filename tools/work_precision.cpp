@@ -130,6 +130,23 @@ std::vector<Case> cases(const std::string& shared) {
                  },
                  {8, 12},
                  {8}});
+  // The spatial case: a slide narrower than the basin against Evers et al. (2019).
+  c.push_back({"impulse_wave_3d", "granular slide two depths wide into a basin (P = 1.39, α = 45°) against Evers et al. (2019)",
+               "mean |a_c1 / a_c1,ref − 1| over the gauges at r/h = 3–7.5, γ = 0, 30, 60° beyond the impact zone",
+               "cells across the water depth h",
+               [](const Resolution& res) {
+                 const auto r = impulseWave3d(res);
+                 Point p = fromCost(res.cells, r.error, r);
+                 p.detail = fmt("P %.3f", r.P) + fmt(", c %.0f m/s", r.soundSpeed) + fmt(", a_0,c1/h %.3f", r.a0) +
+                            fmt(", r_0/h %.2f", r.impactRadius0) + fmt(" (γ 0), %.2f (90)", r.impactRadius90) +
+                            fmt("; error on the axis %.3f", r.axisError) + fmt(", off it %.3f", r.offAxisError) +
+                            fmt(", water lost %.4f", r.lostWater) + "; a_c1/h (ref) at r/h, γ:";
+                 for (const auto& g : r.gauges)
+                   p.detail += fmt(" %g", g.r) + fmt("/%g°", g.gammaDeg) + fmt(" %.3f", g.crest) + fmt(" (%.3f)", g.ref);
+                 return p;
+               },
+               {4, 6},
+               {4}});
   // Planar collapses at the aspect ratios of issue 14, rate-independent and mu(I).
   for (const auto& [modelName, suffix] :
        {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})
