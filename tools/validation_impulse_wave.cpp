@@ -1,6 +1,7 @@
-// The impulse-wave validation case: a granular slide into still water in a quasi-2-D flume, its
-// largest wave against Heller & Hager (2010). The water surface is read by the run's own wave
-// gauges ([[output.gauges]], io/output/water_gauges.h), one every h/2 along the flume.
+// The impulse-wave validation cases: a granular slide into still water in a quasi-2-D flume, its
+// largest wave against Heller & Hager (2010), and a slide narrower than a basin, its first crest
+// around the impact against Evers et al. (2019). The water surface is read by the run's own wave
+// gauges ([[output.gauges]], io/output/water_gauges.h).
 #include "tools/validation_cases.h"
 #include "tools/validation_support.h"
 
