@@ -1,5 +1,6 @@
 // Wave gauges ([[output.gauges]]): still water reads its own level, over the floor and over a
-// step under it; a dry gauge reads nothing; a scene without water is refused by name.
+// step under it; a dry gauge reads nothing; the column reads the depth wherever its bottom lies;
+// a scene without water is refused by name.
 #include "io/run/run_driver.h"
 #include "io/output/water_gauges.h"
 #include "test_support.h"
@@ -104,4 +105,22 @@ TEST(WaterGauges, AGaugeInASceneWithoutWaterIsRefusedByName) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("gauge 'floor'"), std::string::npos) << e.what();
   }
+}
+
+// The column (WaterGauges::depths, what a jet thrown over a gauge adds as its thickness, not its
+// elevation): the same tank at the start reads 0.4 m over the floor, 0.2 m over the step (its
+// surface 50.4 m less its bottom 50.2 m) and 0 where dry; exact on the seeding lattice up to
+// float rounding of positions at 50 m.
+TEST(WaterGauges, TheColumnIsTheWatersDepthWhereverItsBottomLies) {
+  SceneSetup s = loadSceneString(kTank, "tank.toml");
+  const std::vector<GaugeSpec> gauges = s.output.gauges;
+  Simulation sim(s.settings, std::move(s.groups));
+  WaterGauges reader(gauges, {}, 0.025);
+  reader.onStart(sim);
+  const std::vector<double> depth = reader.depths(sim), surface = reader.surfaces(sim);
+  ASSERT_EQ(depth.size(), 3u);
+  EXPECT_NEAR(depth[0], 0.4, 1e-5);
+  EXPECT_NEAR(depth[1], 0.2, 1e-5);
+  EXPECT_EQ(depth[2], 0.0);
+  EXPECT_NEAR(surface[1] - depth[1], 50.2, 1e-4);
 }

@@ -178,6 +178,41 @@ struct ImpulseWave3dResult : RunCost {
 /// the successor of Heller & Hager's manual. r.cells: cells across the depth h.
 ImpulseWave3dResult impulseWave3d(const Resolution& r);
 
+/// Dam break onto a box standing in its way, MARIN's experiment (Kleefsman, Fekken, Veldman,
+/// Iwanowski & Buchner 2005, J. Comput. Phys. 206:363; SPHERIC Test 2): 0.55 m of water released
+/// down a 3.22 m tank against a box 0.161 m high and 0.403 m wide. The water depth at the four
+/// gauges (x = 0.496 m behind the box, 0.992 m in front of it, 1.488 m, and 2.638 m in the
+/// reservoir) and the box's horizontal load against the experiment's records
+/// (tools/validation_kleefsman_data.h). Half the tank is run, mirrored about its centre line.
+/// r.cells: cells across the water depth 0.55 m; r.soundSpeed: the water's c (default 50 m/s).
+struct ObstacleImpactResult : RunCost {
+  static constexpr double kSample = 0.01;      ///< s between samples (the load: its mean over each)
+  static constexpr int kDepthEvery = 5;         ///< depths are compared every 5th sample (0.05 s)
+  static constexpr double kArrivalDepth = 0.01; ///< m: a gauge is reached
+  /// The load: a centred moving average of 5 samples (0.05 s), its peak for t <= kImpactEnd and
+  /// its mean over kPlateau (the flow pressing on the box before the reflection from the far wall
+  /// returns).
+  static constexpr int kFilterHalf = 2;
+  static constexpr double kImpactEnd = 1.0, kPlateau[2] = {0.6, 1.0};
+  static const std::vector<double>& gaugeX(); ///< the gauges' x (m)
+  double soundSpeed = 0;
+  std::vector<double> t;                           ///< every kSample from 0
+  std::vector<std::vector<double>> depth;         ///< per gauge, at t (m)
+  std::vector<std::vector<double>> depthExp;      ///< per gauge, every kDepthEvery-th t (m; NaN past the record)
+  std::vector<double> depthError;                  ///< per gauge: sum |d - d_exp| / sum d_exp over those
+  std::vector<double> arrival, arrivalExp;         ///< per gauge: first t with depth > kArrivalDepth (-1: never)
+  std::vector<double> force, forceFiltered;        ///< the box's load along -x (N), whole tank
+  std::vector<double> forceExp, forceExpFiltered;  ///< the same from the front face's sensors (N; 0 before the record)
+  double peak = 0, peakT = 0, plateau = 0;         ///< of forceFiltered (N, s, N)
+  double peakExp = 0, peakTExp = 0, plateauExp = 0; ///< the same from the front face's pressure sensors
+  double lostWater = 0;
+  /// |every collider's x impulse - the x momentum the water lost| over the largest x momentum it had
+  double momentumImbalance = 0;
+};
+ObstacleImpactResult obstacleImpact(const Resolution& r, double endTime = 6);
+/// Fills the comparison fields of `res` from its t, depth and force.
+void compareWithExperiment(ObstacleImpactResult& res);
+
 /// A one-cell-thick elastic layer (dx = 5 m, one particle per cell, 5 m thick at z = 500 m) over
 /// a layerSide square in a domainSide x domainSide x domainHeight box: what the sparse grid must
 /// store in proportion to the layer, not the box (test_sparse_grid, `talus work-precision`).

@@ -147,6 +147,26 @@ std::vector<Case> cases(const std::string& shared) {
                },
                {4, 6},
                {4}});
+  // A dam break onto a box against MARIN's depths and load (Kleefsman et al. 2005).
+  c.push_back({"obstacle_impact", "dam break onto a box: water depths at four gauges, 0–6 s, against Kleefsman et al. (2005)",
+               "mean over the gauges of Σ|d − d_exp| / Σ d_exp (every 0.05 s)", "cells across the water depth 0.55 m",
+               [](const Resolution& res) {
+                 const auto r = obstacleImpact(res);
+                 double mean = 0;
+                 for (double e : r.depthError) mean += e / double(r.depthError.size());
+                 Point p = fromCost(res.cells, mean, r);
+                 p.detail = fmt("c %.0f m/s; per gauge (x m: error, arrival s (exp))", r.soundSpeed);
+                 for (size_t k = 0; k < r.depthError.size(); ++k)
+                   p.detail += fmt(" %g:", ObstacleImpactResult::gaugeX()[k]) + fmt(" %.3f", r.depthError[k]) +
+                               fmt(", %.2f", r.arrival[k]) + fmt(" (%.2f)", r.arrivalExp[k]);
+                 p.detail += fmt("; box load: peak %.0f N", r.peak) + fmt(" at %.2f s", r.peakT) +
+                             fmt(" (%.0f N", r.peakExp) + fmt(" at %.2f s)", r.peakTExp) +
+                             fmt(", 0.6–1.0 s %.0f N", r.plateau) + fmt(" (%.0f N)", r.plateauExp) +
+                             fmt("; water lost %.4f", r.lostWater) + fmt(", momentum balance %.1e", r.momentumImbalance);
+                 return p;
+               },
+               {10, 15, 20},
+               {10}});
   // Planar collapses at the aspect ratios of issue 14, rate-independent and mu(I).
   for (const auto& [modelName, suffix] :
        {std::pair{GranularModel::DruckerPrager, ""}, std::pair{GranularModel::MuI, "_mu_i"}})

@@ -141,6 +141,19 @@ std::vector<double> WaterGauges::surfaces(const Simulation& sim) const {
   return surfacesFrom(sim, b, {std::string_view(own.data(), own.size())});
 }
 
+std::vector<double> WaterGauges::depths(const Simulation& sim) const {
+  std::vector<char> own;
+  const PartBounds b = PartBounds::of(sim);
+  part(sim, b, own);
+  PartReader get(std::string_view(own.data(), own.size()));
+  std::vector<double> d(gauges_.size());
+  for (size_t k = 0; k < d.size(); ++k) {
+    d[k] = double(get.get<__int128>()) * powerOfTwo(unit(sim, b, k));
+    get.get<double>(); // the lowest particle: not needed for the column
+  }
+  return d;
+}
+
 void WaterGauges::sampleParts(const Simulation& sim, double, const PartBounds& b,
                               const std::vector<std::string_view>& parts, std::vector<double>& row) {
   const std::vector<double> z = surfacesFrom(sim, b, parts);

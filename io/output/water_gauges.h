@@ -41,6 +41,10 @@ public:
   /// The surface elevation (world z, m) at every gauge now, NaN where dry; one pass over the
   /// water particles whatever the number of gauges.
   std::vector<double> surfaces(const Simulation& sim) const;
+  /// The water column at every gauge now: its volume per unit area in the footprint (m), 0 where
+  /// dry, wherever it lies (a jet passing over a gauge adds its thickness, where `surfaces`
+  /// reads its elevation).
+  std::vector<double> depths(const Simulation& sim) const;
 
 private:
   std::vector<GaugeSpec> gauges_;
