@@ -24,7 +24,6 @@ using namespace detail;
 /// centre line stands for the whole: 3 mm is a tenth of the finest cell run here.
 constexpr double kTank = 3.22, kHalfWidth = 0.5, kWaterX0 = 1.992, kDepth = 0.55;
 constexpr double kBoxX0 = 0.6635, kBoxX1 = 0.8245, kBoxHeight = 0.161, kBoxHalfWidth = 0.2015;
-constexpr double kG = 9.81;
 
 std::string obstacleScene(double dx, double soundSpeed) {
   // The box reaches below the floor and past the centre line so no node row of water lies
@@ -97,7 +96,8 @@ ObstacleImpactResult obstacleImpact(const Resolution& r, double endTime) {
   const double dx = kDepth / r.cells;
   ObstacleImpactResult res;
   // c = 50 m/s: ten times the front's 2 sqrt(g d) = 4.6 m/s, a density error under 1 % (the
-  // depths); the impact load's sensitivity to it is docs/convergence.md's.
+  // depths). The box's load depends on the time step c sets, through the box's edges
+  // (docs/convergence.md, "Dam break onto a box").
   res.soundSpeed = r.soundSpeed > 0 ? r.soundSpeed : 50;
   auto sim = build(obstacleScene(dx, res.soundSpeed), r, res);
   size_t box = 0;
