@@ -184,13 +184,10 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   const int half = int(std::lround(0.5 * WallImpactResult::kFilterT / 0.01));
   for (PressureSignal* s : {&res.wall, &res.cell}) {
     const int count = int(s->P.size());
+    s->PFiltered = movingAverage(s->P, half);
     double plateauN = 0;
     for (int i = 0; i < count; ++i) {
-      double sum = 0;
-      int n = 0;
-      for (int j = std::max(0, i - half); j <= std::min(count - 1, i + half); ++j) sum += s->P[size_t(j)], ++n;
-      s->PFiltered.push_back(sum / n);
-      const double T = res.T[size_t(i)], P = s->PFiltered.back();
+      const double T = res.T[size_t(i)], P = s->PFiltered[size_t(i)];
       if (T <= 3.3 && P > s->peak) s->peak = P, s->peakT = T;
       if (s->onsetT == 0 && P >= 0.1) s->onsetT = T;
       if (T >= 3.5 && T <= 5.0) s->plateau += P, plateauN += 1;

@@ -73,18 +73,6 @@ double firstAbove(const std::vector<double>& t, const std::vector<double>& v, do
   return -1;
 }
 
-/// Centred moving average over 2 half + 1 samples (fewer at the ends).
-std::vector<double> movingAverage(const std::vector<double>& v, int half) {
-  std::vector<double> out;
-  for (int i = 0; i < int(v.size()); ++i) {
-    double sum = 0;
-    int n = 0;
-    for (int j = std::max(0, i - half); j <= std::min(int(v.size()) - 1, i + half); ++j) sum += v[size_t(j)], ++n;
-    out.push_back(sum / n);
-  }
-  return out;
-}
-
 } // namespace
 
 const std::vector<double>& ObstacleImpactResult::gaugeX() {

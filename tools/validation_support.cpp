@@ -2,6 +2,7 @@
 
 #include "io/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -32,6 +33,17 @@ std::string format(const char* fmt, ...) {
   std::vsnprintf(buf, sizeof buf, fmt, ap);
   va_end(ap);
   return buf;
+}
+
+std::vector<double> movingAverage(const std::vector<double>& v, int half) {
+  std::vector<double> out;
+  for (int i = 0; i < int(v.size()); ++i) {
+    double sum = 0;
+    int n = 0;
+    for (int j = std::max(0, i - half); j <= std::min(int(v.size()) - 1, i + half); ++j) sum += v[size_t(j)], ++n;
+    out.push_back(sum / n);
+  }
+  return out;
 }
 
 double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold, double maxGap) {

@@ -1,6 +1,6 @@
 // Helpers shared by the validation cases (validation_cases.cpp, validation_dam_break.cpp):
 // building a Simulation from an inline scene at a given Resolution, timing, and the front of a
-// quasi-2-D flow. Internal to talus_validation.
+// quasi-2-D flow, a centred moving average. Internal to talus_validation.
 #pragma once
 
 #include "engine/simulation.h"
@@ -9,6 +9,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace talus::validation::detail {
 
@@ -19,6 +20,9 @@ std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, 
 /// Records steps and wall seconds since t0.
 void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost);
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/// Centred moving average of v over 2 half + 1 samples (fewer at the ends), summed in index order.
+std::vector<double> movingAverage(const std::vector<double>& v, int half);
 
 /// Front of a quasi-2-D flow (Lube's "farthest point of the continuous deposit"): bins of width
 /// `bin` count when their thickness (particle volume / (bin * channel width)) reaches
