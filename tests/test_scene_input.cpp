@@ -128,3 +128,23 @@ TEST(SceneInput, FrictionAnglesOutsideZeroToNinetyAreRefused) {
                                  "poisson_ratio = 0.25", "poisson_ratio = 0.25");
   expectError(dp, 10, "materials[0].friction_angle", "(0, 90)");
 }
+
+// A wall holds the node rows at or beyond its face: a face between rows gives the material up to
+// a cell more room, which a user should be told (a half tank 0.5 m wide at dx 0.055 m is 10 %
+// wider: docs/convergence.md, "Dam break onto a box").
+TEST(SceneInput, AWallBetweenNodeRowsIsNotedWithWhereItActs) {
+  auto domainNotes = [](const SceneSetup& s) {
+    std::vector<std::string> out;
+    for (const auto& n : s.notes)
+      if (n.rfind("domain:", 0) == 0) out.push_back(n);
+    return out;
+  };
+  EXPECT_TRUE(domainNotes(loadSceneString(kGood, "test.toml")).empty());
+  const auto off = domainNotes(loadSceneString(replace(kGood, "max = [2, 2, 2]", "max = [2.05, 2, 2]"), "test.toml"));
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_NE(off[0].find("x_max wall (2.05 m)"), std::string::npos) << off[0];
+  EXPECT_NE(off[0].find("acts at the row beyond, 2.1 m"), std::string::npos) << off[0];
+  // An open face holds no nodes: nothing to say.
+  EXPECT_TRUE(domainNotes(loadSceneString(replace(kGood, "max = [2, 2, 2]", "max = [2.05, 2, 2]\nx_max = \"open\""),
+                                          "test.toml")).empty());
+}
