@@ -184,7 +184,8 @@ ImpulseWave3dResult impulseWave3d(const Resolution& r);
 /// gauges (x = 0.496 m behind the box, 0.992 m in front of it, 1.488 m, and 2.638 m in the
 /// reservoir) and the box's horizontal load against the experiment's records
 /// (tools/validation_kleefsman_data.h). Half the tank is run, mirrored about its centre line.
-/// r.cells: cells across the water depth 0.55 m; r.soundSpeed: the water's c (default 50 m/s).
+/// r.cells: about the cells across the water depth 0.55 m (dx is the half width 0.5 m over the
+/// nearest whole number, so the walls lie on node rows); r.soundSpeed: the water's c (default 50 m/s).
 struct ObstacleImpactResult : RunCost {
   static constexpr double kSample = 0.01;      ///< s between samples (the load: its mean over each)
   static constexpr int kDepthEvery = 5;         ///< depths are compared every 5th sample (0.05 s)

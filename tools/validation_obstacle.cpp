@@ -25,9 +25,14 @@ using namespace detail;
 constexpr double kTank = 3.22, kHalfWidth = 0.5, kWaterX0 = 1.992, kDepth = 0.55;
 constexpr double kBoxX0 = 0.6635, kBoxX1 = 0.8245, kBoxHeight = 0.161, kBoxHalfWidth = 0.2015;
 
+/// The tank's length at dx: the far wall on the node row nearest 3.22 m (a closed face holds the
+/// row at or beyond it, so a face between rows would give the water up to a cell more room).
+double tankLength(double dx) { return std::round(kTank / dx) * dx; }
+
 std::string obstacleScene(double dx, double soundSpeed) {
   // The box reaches below the floor and past the centre line so no node row of water lies
-  // between it and either wall.
+  // between it and either wall. The walls lie on node rows: the centre line as dx is a whole
+  // part of the half width, the far wall within dx/2 of MARIN's (tankLength), the water to it.
   return format(R"(
 [simulation]
 dx = %.9g
@@ -54,7 +59,7 @@ min = [%.9g, %.9g, -0.2]
 max = [%.9g, 1, %.9g]
 law = "slip"
 )",
-                dx, kTank, kHalfWidth, soundSpeed, kWaterX0, kTank, kHalfWidth, kDepth, kBoxX0,
+                dx, tankLength(dx), kHalfWidth, soundSpeed, kWaterX0, tankLength(dx), kHalfWidth, kDepth, kBoxX0,
                 kHalfWidth - kBoxHalfWidth, kBoxX1, kBoxHeight);
 }
 
@@ -66,10 +71,11 @@ double relativeL1(const std::vector<double>& a, const std::vector<double>& b) {
   return den > 0 ? num / den : 0.0;
 }
 
-/// The first time a record exceeds `level`; -1 when it never does.
+/// The first time a record exceeds `level`, linear between the samples around the crossing (the
+/// run is sampled every 0.01 s, so its arrival is not rounded up to a sample); -1 when it never does.
 double firstAbove(const std::vector<double>& t, const std::vector<double>& v, double level) {
   for (size_t i = 0; i < v.size(); ++i)
-    if (v[i] > level) return t[i];
+    if (v[i] > level) return i == 0 ? t[0] : t[i - 1] + (t[i] - t[i - 1]) * (level - v[i - 1]) / (v[i] - v[i - 1]);
   return -1;
 }
 
@@ -81,7 +87,8 @@ const std::vector<double>& ObstacleImpactResult::gaugeX() {
 }
 
 ObstacleImpactResult obstacleImpact(const Resolution& r, double endTime) {
-  const double dx = kDepth / r.cells;
+  // About r.cells across the depth, and a whole number across the half width (on node rows).
+  const double dx = kHalfWidth / std::max(1.0, std::round(kHalfWidth * r.cells / kDepth));
   ObstacleImpactResult res;
   // c = 50 m/s: ten times the front's 2 sqrt(g d) = 4.6 m/s, a density error under 1 % (the
   // depths). The box's load depends on the time step c sets, through the box's edges

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The box of the dam break onto a box (tools/validation_obstacle.cpp, d/dx 10, c = 50 m/s) with
+# The box of the dam break onto a box (tools/validation_obstacle.cpp, --cells 10: dx 0.5/9 m, the
+# walls on node rows, c = 50 m/s) with
 # and without its edges, at CFL 0.4 and 0.1: the structure's load against the time step
 # (docs/convergence.md, "Dam break onto a box"). Each run is 1.2 s of the half tank at 1 thread.
 #   bash tools/studies/box_edges.sh [TALUS] [OUTDIR]
@@ -17,12 +18,12 @@ for v in "${variants[@]}"; do
     dir="$out/${name}_cfl$cfl"
     cat >"$dir.toml" <<TOML
 [simulation]
-dx = 0.055
+dx = 0.0555555556
 end_time = 1.2
 cfl = $cfl
 [domain]
 min = [0, 0, 0]
-max = [3.22, 0.5, 1]
+max = [3.22222222, 0.5, 1]
 walls = "slip"
 z_max = "open"
 [[materials]]
@@ -34,7 +35,7 @@ sound_speed = 50
 material = "water"
 shape = "box"
 min = [1.992, 0, 0]
-max = [3.22, 0.5, 0.55]
+max = [3.22222222, 0.5, 0.55]
 [[structures]]
 name = "box"
 shape = "box"
