@@ -116,7 +116,7 @@ void Collider::gather(uint32_t b, const BlockCoord& c, double dx, const Vec4* no
 void Collider::gatherFace(const BlockCoord& c, double dx, const Vec4* nodes, ContactBatch& out) const {
   // Node index threshold: node i is on or beyond the lower face when i <= at/dx (and the upper
   // face when i >= at/dx), within rounding.
-  const int limit = upper_ ? int(std::ceil(at_ / dx - 1e-6)) : int(std::floor(at_ / dx + 1e-6));
+  const int limit = int(faceRow(at_, dx, upper_));
   const int o = (axis_ == 0 ? c.x : axis_ == 1 ? c.y : c.z) * kBlockDim;
   if (upper_ ? o + kBlockDim - 1 < limit : o > limit) return;
   Vec3 nrm = Vec3::Zero();

@@ -10,6 +10,7 @@
 #include "engine/parameter_field.h"
 #include "engine/sdf.h"
 
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <unordered_map>
@@ -65,6 +66,12 @@ public:
   /// The part of that face whose nodes' two other coordinates lie within [lo, hi] (local frame).
   static Collider panel(std::string name, int axis, bool upper, double at, std::shared_ptr<const ContactLaw> law,
                         const Vec3d& lo, const Vec3d& hi);
+  /// The node row a face at coordinate `at` holds first: the lower face holds the rows at or
+  /// below it, the upper face those at or above it (within 1e-6 dx). A face between rows thus
+  /// acts at the row beyond it; the cull box and the scene reader's note follow this.
+  static long faceRow(double at, double dx, bool upper) {
+    return upper ? long(std::ceil(at / dx - 1e-6)) : long(std::floor(at / dx + 1e-6));
+  }
 
   const std::string& name() const { return name_; }
   const ContactLaw& law() const { return *law_; }

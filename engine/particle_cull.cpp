@@ -1,5 +1,7 @@
 #include "engine/particle_cull.h"
 
+#include "engine/collider.h"
+
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -11,8 +13,8 @@ CullBox cullBox(const DomainBox& domain, const std::array<std::shared_ptr<const 
                 const Periodicity& periodic, double dx) {
   CullBox box;
   for (int d = 0; d < 3; ++d) {
-    const double wallLo = std::floor(domain.min[d] / dx + 1e-6) * dx; // the node rows the faces hold
-    const double wallHi = std::ceil(domain.max[d] / dx - 1e-6) * dx;
+    const double wallLo = double(Collider::faceRow(domain.min[d], dx, false)) * dx; // the node rows the faces hold
+    const double wallHi = double(Collider::faceRow(domain.max[d], dx, true)) * dx;
     box.lo[d] = Real(faces[size_t(2 * d)] ? wallLo - 0.5 * dx : domain.min[d]);
     box.hi[d] = Real(faces[size_t(2 * d + 1)] ? wallHi + 0.5 * dx : domain.max[d]);
     if (periodic.axis[d]) box.lo[d] = -std::numeric_limits<Real>::max(), box.hi[d] = std::numeric_limits<Real>::max();

@@ -163,8 +163,8 @@ std::vector<Case> cases(const std::string& shared) {
                              fmt(" (%.0f N", r.peakExp) + fmt(" at %.2f s)", r.peakTExp) +
                              fmt(", 0.6–1.0 s %.0f N", r.plateau) + fmt(" (%.0f N)", r.plateauExp) +
                              fmt("; water lost %.4f", r.lostWater) + fmt(", momentum balance %.1e", r.momentumImbalance);
-                 // The flow arriving in front of the box (x = 0.992 m), before it feels the box.
-                 p.detail += "; at 0.992 m, m (MARIN):";
+                 // The flow arriving in front of the box (gauge 1), before it feels the box.
+                 p.detail += fmt("; at %g m, m (MARIN):", ObstacleImpactResult::gaugeX()[1]);
                  for (double t : {0.40, 0.45, 0.50, 0.60, 0.75, 1.00}) {
                    const auto i = size_t(std::lround(t / ObstacleImpactResult::kSample));
                    if (i < r.depth[1].size())

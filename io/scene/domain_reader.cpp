@@ -1,5 +1,6 @@
 #include "io/scene/domain_reader.h"
 
+#include "engine/collider.h"
 #include "io/scene/contact_law_table.h"
 #include "io/terrain/dem_raster.h"
 #include "io/terrain/terrain_loader.h"
@@ -30,7 +31,7 @@ void readPeriodic(const ConfigTable& dom, SceneSetup& s) {
 }
 
 /// A wall holds the grid nodes at or beyond its face, so a face between two node rows acts at
-/// the row beyond it (engine/collider.h, Collider::face; the cull box follows it): the material
+/// the row beyond it (Collider::faceRow; the cull box follows it): the material
 /// has up to a cell more room than the box says. Said once per such face.
 void noteWallsOffNodes(SceneSetup& s) {
   const double dx = s.settings.dx;
@@ -39,7 +40,7 @@ void noteWallsOffNodes(SceneSetup& s) {
     const bool upper = f % 2;
     if (!s.settings.faces[f] || s.settings.periodic[size_t(axis)]) continue;
     const double at = upper ? s.settings.domain.max[axis] : s.settings.domain.min[axis];
-    const double row = (upper ? std::ceil(at / dx - 1e-6) : std::floor(at / dx + 1e-6)) * dx;
+    const double row = double(Collider::faceRow(at, dx, upper)) * dx;
     if (std::abs(row - at) <= 1e-6 * dx) continue;
     char buf[320];
     std::snprintf(buf, sizeof buf,
