@@ -159,6 +159,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   wpCmd->add_option("--sound-speed", singleRes.soundSpeed, "Water cases: the softened water's c in m/s (--single)")
       ->check(CLI::PositiveNumber);
+  bool singleScene = false;
+  wpCmd->add_flag("--scene", singleScene, "With --single: print the case's scene file instead of running it (obstacle_impact)");
 
   BenchOptions bench;
   auto* benchCmd = app.add_subcommand("bench", "Measure particle-steps per second per core, phase times, memory");
@@ -200,7 +202,7 @@ int main(int argc, char** argv) {
       return runRankBenchmarks(bench, gRanks);
     }
     if (*benchCmd) return runBenchmarks(bench);
-    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleRes, wp.sharedDir);
+    if (*wpCmd) return single.empty() ? runWorkPrecision(wp) : runSingleCase(single, singleRes, wp.sharedDir, singleScene);
     if (*terrainCmd) return runTerrainCommand(terrainOpt);
     if (*synthCmd) return runSynthDemCommand(synthOpt);
     if (*ensembleCmd) return runEnsembleCommand(ensembleOpt);

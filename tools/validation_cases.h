@@ -211,6 +211,10 @@ struct ObstacleImpactResult : RunCost {
   double momentumImbalance = 0;
 };
 ObstacleImpactResult obstacleImpact(const Resolution& r, double endTime = 6);
+/// The scene file obstacleImpact runs at r (its dx and sound speed; r's CFL and particles per
+/// cell and the gauges are set by the case, not written here): for studies that vary it with
+/// `--set` (tools/studies/box_edges.sh).
+std::string obstacleSceneText(const Resolution& r);
 /// Fills the comparison fields of `res` from its t, depth and force.
 void compareWithExperiment(ObstacleImpactResult& res);
 

@@ -79,6 +79,14 @@ double firstAbove(const std::vector<double>& t, const std::vector<double>& v, do
   return -1;
 }
 
+/// About r.cells across the depth, and a whole number across the half width (on node rows).
+double obstacleDx(const Resolution& r) { return kHalfWidth / std::max(1.0, std::round(kHalfWidth * r.cells / kDepth)); }
+
+/// c = 50 m/s unless r sets it: ten times the front's 2 sqrt(g d) = 4.6 m/s, a density error
+/// under 1 % (the depths). The box's load depends on the time step c sets, through the box's
+/// edges (docs/convergence.md, "Dam break onto a box").
+double obstacleSoundSpeed(const Resolution& r) { return r.soundSpeed > 0 ? r.soundSpeed : 50; }
+
 } // namespace
 
 const std::vector<double>& ObstacleImpactResult::gaugeX() {
@@ -86,14 +94,12 @@ const std::vector<double>& ObstacleImpactResult::gaugeX() {
   return x;
 }
 
+std::string obstacleSceneText(const Resolution& r) { return obstacleScene(obstacleDx(r), obstacleSoundSpeed(r)); }
+
 ObstacleImpactResult obstacleImpact(const Resolution& r, double endTime) {
-  // About r.cells across the depth, and a whole number across the half width (on node rows).
-  const double dx = kHalfWidth / std::max(1.0, std::round(kHalfWidth * r.cells / kDepth));
+  const double dx = obstacleDx(r);
   ObstacleImpactResult res;
-  // c = 50 m/s: ten times the front's 2 sqrt(g d) = 4.6 m/s, a density error under 1 % (the
-  // depths). The box's load depends on the time step c sets, through the box's edges
-  // (docs/convergence.md, "Dam break onto a box").
-  res.soundSpeed = r.soundSpeed > 0 ? r.soundSpeed : 50;
+  res.soundSpeed = obstacleSoundSpeed(r);
   auto sim = build(obstacleScene(dx, res.soundSpeed), r, res);
   size_t box = 0;
   while (sim->colliders()[box]->name() != "box") ++box;

@@ -19,7 +19,9 @@ struct WorkPrecisionOptions {
 int runWorkPrecision(const WorkPrecisionOptions& options);
 
 /// One case at one resolution, printed as "error wall_seconds particles steps" (used to run the
-/// double-precision binary from the float one).
-int runSingleCase(const std::string& caseName, const validation::Resolution& res, const std::string& sharedDir);
+/// double-precision binary from the float one); with `printScene`, the scene file it would run
+/// instead (only a case that is one scene has it: returns 2 otherwise).
+int runSingleCase(const std::string& caseName, const validation::Resolution& res, const std::string& sharedDir,
+                  bool printScene = false);
 
 } // namespace talus

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The box of the dam break onto a box (tools/validation_obstacle.cpp, --cells 10: dx 0.5/9 m, the
-# walls on node rows, c = 50 m/s) with
+# The box of the dam break onto a box (the case's scene at --cells 10: dx 0.5/9 m, the walls on
+# node rows, c = 50 m/s) with
 # and without its edges, at CFL 0.4 and 0.1: the structure's load against the time step
 # (docs/convergence.md, "Dam break onto a box"). Each run is 1.2 s of the half tank at 1 thread.
 #   bash tools/studies/box_edges.sh [TALUS] [OUTDIR]
@@ -12,43 +12,15 @@ mkdir -p "$out"
 # the box above the water (no top edge); both (a wall across the tank: no edges).
 variants=("box:0.6635, 0.2985, -0.2:0.8245, 1, 0.161" "step:0.6635, -1, -0.2:0.8245, 1, 0.161"
           "tall:0.6635, 0.2985, -0.2:0.8245, 1, 1.5" "wall:0.6635, -1, -0.2:0.8245, 1, 1.5")
+# The case's own scene (talus work-precision --single obstacle_impact --scene), varied by --set.
+"$talus" work-precision --single obstacle_impact --cells 10 --scene >"$out/case.toml"
 for v in "${variants[@]}"; do
   IFS=: read -r name lo hi <<<"$v"
   for cfl in 0.4 0.1; do
     dir="$out/${name}_cfl$cfl"
-    cat >"$dir.toml" <<TOML
-[simulation]
-dx = 0.0555555556
-end_time = 1.2
-cfl = $cfl
-[domain]
-min = [0, 0, 0]
-max = [3.22222222, 0.5, 1]
-walls = "slip"
-z_max = "open"
-[[materials]]
-name = "water"
-model = "water"
-density = 1000
-sound_speed = 50
-[[bodies]]
-material = "water"
-shape = "box"
-min = [1.992, 0, 0]
-max = [3.22222222, 0.5, 0.55]
-[[structures]]
-name = "box"
-shape = "box"
-min = [$lo]
-max = [$hi]
-law = "slip"
-[output]
-series_interval = 0.01
-h5 = false
-vdb = false
-plots = false
-TOML
-    "$talus" run "$dir.toml" --out "$dir" --threads 1 >"$dir.log" 2>&1
+    "$talus" run "$out/case.toml" --out "$dir" --threads 1 --set simulation.end_time=1.2 --set simulation.cfl=$cfl \
+      --set "structures.box.min=[$lo]" --set "structures.box.max=[$hi]" --set output.series_interval=0.01 \
+      --set output.h5=false --set output.vdb=false --set output.plots=false >"$dir.log" 2>&1
     # The whole tank's load along -x, 5-sample (0.05 s) centred means: its peak for t <= 1 s and
     # its mean over 0.6-1.0 s, as the validation case reads it.
     python3 - "$dir/series.csv" "$name" "$cfl" <<'PY'
