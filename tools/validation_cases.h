@@ -90,6 +90,13 @@ struct WallImpactResult : RunCost {
   /// momentum the water lost, |difference| over the largest momentum the water had (no particle
   /// may leave without loading a wall), and the mass culled (kg).
   double momentumImbalance = 0, massRemoved = 0;
+  /// The water levels at Lobovsky et al. (2014)'s four gauges in the same layout
+  /// (tools/validation_lobovsky_data.h): per gauge, h/H every 0.01 in T (the water column in a
+  /// footprint a cell wide); Σ|h − h_exp| / Σ h_exp over the experiment's samples (every 0.1,
+  /// T ≤ 5.2); and the mean h/H over the plateau's window 3.5 ≤ T ≤ 5, the run's and the
+  /// experiment's (the flow arriving at the wall: H4 stands 0.83 H before it).
+  std::vector<std::vector<double>> level;
+  std::vector<double> levelError, levelMean, levelMeanExp;
 };
 WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r);
 /// Quasi-2-D granular column collapse (phi 32, rough bed mu 0.625) of a column a L0 high and L0

@@ -1,9 +1,11 @@
 // The dam-break validation cases: the surge front against Martin & Moyce (1952) and Koshizuka &
 // Oka (1996), and the pressure on the far wall against Buchner (2002). Data: ../shared/validation.
 #include "tools/validation_cases.h"
+#include "tools/validation_lobovsky_data.h"
 #include "tools/validation_support.h"
 
 #include "engine/simulation.h"
+#include "io/output/water_gauges.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +72,22 @@ shape = "box"
 min = [0, 0, 0]
 max = [%.9g, %.9g, %.9g]
 )", dx, domain.x(), domain.y(), domain.z(), soundSpeed, column.x(), column.y(), column.z());
+}
+
+/// WallImpactResult's level comparison from its levels, sampled every 0.01 in T from 0.
+void compareLevels(WallImpactResult& res) {
+  using namespace lobovsky;
+  const int every = int(std::lround(kStepT / 0.01));
+  for (size_t k = 0; k < res.level.size(); ++k) {
+    double num = 0, den = 0, mean = 0, meanExp = 0, n = 0;
+    for (int i = 0; i < kSamples && size_t(i * every) < res.level[k].size(); ++i) {
+      const double h = res.level[k][size_t(i * every)], hExp = kLevel[k][i], T = i * kStepT;
+      num += std::abs(h - hExp), den += hExp;
+      if (T >= 3.5 - 1e-9 && T <= 5 + 1e-9) mean += h, meanExp += hExp, n += 1;
+    }
+    res.levelError.push_back(den > 0 ? num / den : 0.0);
+    res.levelMean.push_back(n > 0 ? mean / n : 0.0), res.levelMeanExp.push_back(n > 0 ? meanExp / n : 0.0);
+  }
 }
 
 } // namespace
@@ -145,6 +163,12 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   for (const auto& [j, w] : rows)
     for (size_t k = 0; k < sim->colliders().size(); ++k)
       if (sim->colliders()[k]->name() == format("row%d", j)) panel.push_back(k);
+  // Lobovsky et al.'s gauges: the water column in a footprint a cell wide across the flume.
+  std::vector<GaugeSpec> gauges;
+  for (double x : lobovsky::kGaugeX) gauges.push_back({format("H%g", x), Eigen::Vector2d(x * H, 0.5 * depth), dx});
+  WaterGauges levels(gauges, {"water"}, dx / std::cbrt(double(r.particlesPerCell)));
+  levels.onStart(*sim);
+  res.level.resize(gauges.size());
   const auto t0 = Clock::now();
   const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
   std::vector<float> pressure;
@@ -175,6 +199,8 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
       }
     }
     res.T.push_back(T), res.cell.P.push_back(n ? sum / double(n) / pScale : 0.0);
+    const std::vector<double> d = levels.depths(*sim);
+    for (size_t k = 0; k < d.size(); ++k) res.level[k].push_back(d[k] / H);
   }
   finish(*sim, t0, res);
   // The loads are what the colliders took from the water: the x momentum it lost.
@@ -201,6 +227,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
     if (T >= 3.5 && T <= 5.0) res.exp.plateau += P, plateauExpN += 1;
   }
   res.exp.plateau /= std::max(1.0, plateauExpN);
+  compareLevels(res);
   return res;
 }
 
