@@ -97,6 +97,9 @@ struct WallImpactResult : RunCost {
   /// experiment's (the flow arriving at the wall: H4 stands 0.83 H before it).
   std::vector<std::vector<double>> level;
   std::vector<double> levelError, levelMean, levelMeanExp;
+  /// The wall's pressure over 3.5 <= T <= 5 at Lobovsky et al.'s four sensor heights (kSensorZ),
+  /// read from the wall's node rows as the wall sensor is.
+  std::vector<double> profile;
 };
 WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r);
 /// Quasi-2-D granular column collapse (phi 32, rough bed mu 0.625) of a column a L0 high and L0

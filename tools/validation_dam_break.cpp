@@ -74,6 +74,74 @@ max = [%.9g, %.9g, %.9g]
 )", dx, domain.x(), domain.y(), domain.z(), soundSpeed, column.x(), column.y(), column.z());
 }
 
+/// The far wall's node rows 0 ... top, each a panel across the whole depth (nodes outside the
+/// flume included), and pressures from their loads. A sensor reads the rows within 2 dx of its
+/// height, weighted by a tent of half-width 2 dx (cut at the floor): the wall's load alternates
+/// between neighbouring rows (the particles' lattice against the nodes; test
+/// ColliderLoads.AWallPanelOnAJetsAxis...), and a tent two rows wide cancels that alternation at
+/// any offset of the sensor from the rows.
+struct WallRows {
+  double dx, depth, pScale;
+  int top;
+  std::vector<size_t> panel = {};       ///< collider index of row j
+  std::vector<double> impulse = {}, window = {}; ///< per row: normal impulse since the last take, and in the window
+  double windowTime = 0;
+
+  std::string panels() const {
+    std::string toml;
+    for (int j = 0; j <= top; ++j)
+      toml += format("[[panels]]\nname = \"row%d\"\nface = \"x_max\"\nmin = [0, -1, %.9g]\nmax = [0, %.9g, %.9g]\n", j,
+                     (j - 0.25) * dx, depth + 1, (j + 0.25) * dx);
+    return toml;
+  }
+  void find(const Simulation& sim) {
+    for (int j = 0; j <= top; ++j)
+      for (size_t k = 0; k < sim.colliders().size(); ++k)
+        if (sim.colliders()[k]->name() == format("row%d", j)) panel.push_back(k);
+    impulse.assign(panel.size(), 0.0), window.assign(panel.size(), 0.0);
+  }
+  void add(const Simulation& sim, double dt) {
+    for (size_t j = 0; j < panel.size(); ++j) impulse[j] += dt * sim.colliderLoads()[panel[j]].force.x();
+  }
+  /// P = p / (rho g H) at height z from per-row impulses over `span` seconds.
+  double pressure(const std::vector<double>& imp, double span, double z) const {
+    double sum = 0, weights = 0;
+    for (size_t j = 0; j < imp.size(); ++j) {
+      const double w = 1 - std::abs(double(j) * dx - z) / (2 * dx);
+      if (w > 0) sum += w * imp[j], weights += w;
+    }
+    return span > 0 && weights > 0 ? sum / weights / span / (dx * depth) / pScale : 0.0;
+  }
+  /// The pressure at z since the last take; the impulses go into the window when `inWindow`.
+  double take(double span, double z, bool inWindow) {
+    const double P = pressure(impulse, span, z);
+    if (inWindow) {
+      for (size_t j = 0; j < impulse.size(); ++j) window[j] += impulse[j];
+      windowTime += span;
+    }
+    impulse.assign(impulse.size(), 0.0);
+    return P;
+  }
+  double windowPressure(double z) const { return pressure(window, windowTime, z); }
+};
+
+/// Mean pressure (Pa) of the particles beyond x0 within dx/2 of height z (world frame): the cell
+/// sensor.
+double wallCellPressure(const Simulation& sim, double x0, double z, double dx) {
+  const double ox = sim.settings().origin.x(), oz = sim.settings().origin.z();
+  std::vector<float> pressure;
+  double sum = 0;
+  size_t n = 0;
+  for (const auto* grp : sim.groups()) {
+    grp->scalar("pressure", pressure);
+    for (size_t p = 0; p < grp->size(); ++p) {
+      const Vec3 x = grp->particles.x[p];
+      if (double(x.x()) + ox >= x0 && std::abs(double(x.z()) + oz - z) <= 0.5 * dx) sum += pressure[p], ++n;
+    }
+  }
+  return n ? sum / double(n) : 0.0;
+}
+
 /// WallImpactResult's level comparison from its levels, sampled every 0.01 in T from 0.
 void compareLevels(WallImpactResult& res) {
   using namespace lobovsky;
@@ -140,29 +208,13 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   const auto data = readPairs(pressureFile);
   // H = 0.6 m as in Marrone et al. The tank is 3 H tall so the run-up jet stays inside.
   const double H = 0.6, dx = H / r.cells, depth = 2 * dx, length = 5.366 * H, g = 9.81;
-  const double tScale = std::sqrt(g / H), pScale = 1000 * g * H, zSensor = 0.2592 * H;
-  // The far wall's node rows within 2 dx of the sensor's height (the domain's corner is a node),
-  // each a panel across the whole depth, nodes outside the flume included, weighted by a tent
-  // of half-width 2 dx: the wall's load alternates between neighbouring rows (the particles'
-  // lattice against the nodes; test ColliderLoads.AWallPanelOnAJetsAxis...), and a tent two rows
-  // wide cancels that alternation at any offset of the sensor from the rows.
-  std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H),
-                                      r.soundSpeed > 0 ? r.soundSpeed : 200);
-  std::vector<std::pair<int, double>> rows; // row index, weight
-  double weights = 0;
-  for (int j = int(std::ceil(zSensor / dx - 2)); j <= int(std::floor(zSensor / dx + 2)); ++j) {
-    const double w = 1 - std::abs(j * dx - zSensor) / (2 * dx);
-    if (w <= 0) continue;
-    rows.emplace_back(j, w), weights += w;
-    toml += format("[[panels]]\nname = \"row%d\"\nface = \"x_max\"\nmin = [0, -1, %.9g]\nmax = [0, %.9g, %.9g]\n", j,
-                   (j - 0.25) * dx, depth + 1, (j + 0.25) * dx);
-  }
+  const double tScale = std::sqrt(g / H), zSensor = 0.2592 * H;
+  WallRows rows{dx, depth, 1000 * g * H, int(std::ceil(std::max(zSensor + 2 * dx, 0.3 * H) / dx))};
+  const std::string toml = waterColumnScene(dx, Vec3d(length, depth, 3 * H), Vec3d(2 * H, depth, H),
+                                            r.soundSpeed > 0 ? r.soundSpeed : 200) + rows.panels();
   WallImpactResult res;
   auto sim = build(toml, r, res);
-  std::vector<size_t> panel;
-  for (const auto& [j, w] : rows)
-    for (size_t k = 0; k < sim->colliders().size(); ++k)
-      if (sim->colliders()[k]->name() == format("row%d", j)) panel.push_back(k);
+  rows.find(*sim);
   // Lobovsky et al.'s gauges: the water column in a footprint a cell wide across the flume.
   std::vector<GaugeSpec> gauges;
   for (double x : lobovsky::kGaugeX) gauges.push_back({format("H%g", x), Eigen::Vector2d(x * H, 0.5 * depth), dx});
@@ -170,38 +222,25 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   levels.onStart(*sim);
   res.level.resize(gauges.size());
   const auto t0 = Clock::now();
-  const double ox = sim->settings().origin.x(), oz = sim->settings().origin.z();
-  std::vector<float> pressure;
-  double impulse = 0, tLast = 0; // the rows' weighted normal impulse since the last sample (N s)
-  double wallsImpulse = 0, largest = 0;  // every collider's x impulse; the largest x momentum
+  double tLast = 0, wallsImpulse = 0, largest = 0; // every collider's x impulse; the largest x momentum
   const double momentum0 = sim->linearMomentum().x();
   auto onStep = [&] {
     const double dt = sim->time() - tLast;
     tLast = sim->time();
-    for (size_t i = 0; i < rows.size(); ++i) impulse += dt * rows[i].second * sim->colliderLoads()[panel[i]].force.x();
+    rows.add(*sim, dt);
     for (const ColliderLoad& l : sim->colliderLoads()) wallsImpulse += dt * l.force.x();
     largest = std::max(largest, std::abs(sim->linearMomentum().x()));
   };
   for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
     const double T = 0.01 * i, tStart = sim->time();
     sim->advanceTo(T / tScale, onStep);
-    const double span = sim->time() - tStart, area = dx * depth;
-    res.wall.P.push_back(span > 0 ? impulse / weights / span / area / pScale : 0.0);
-    impulse = 0;
-    double sum = 0;
-    size_t n = 0;
-    for (const auto* grp : sim->groups()) {
-      grp->scalar("pressure", pressure);
-      for (size_t p = 0; p < grp->size(); ++p) {
-        const Vec3 x = grp->particles.x[p];
-        if (double(x.x()) + ox >= length - dx && std::abs(double(x.z()) + oz - zSensor) <= 0.5 * dx)
-          sum += pressure[p], ++n;
-      }
-    }
-    res.T.push_back(T), res.cell.P.push_back(n ? sum / double(n) / pScale : 0.0);
+    res.wall.P.push_back(rows.take(sim->time() - tStart, zSensor, T > 3.5 + 1e-9 && T <= 5 + 1e-9));
+    res.T.push_back(T), res.cell.P.push_back(wallCellPressure(*sim, length - dx, zSensor, dx) / rows.pScale);
     const std::vector<double> d = levels.depths(*sim);
     for (size_t k = 0; k < d.size(); ++k) res.level[k].push_back(d[k] / H);
   }
+  for (size_t k = 0; k < std::size(lobovsky::kSensorZ); ++k)
+    res.profile.push_back(rows.windowPressure(lobovsky::kSensorZ[k] * H));
   finish(*sim, t0, res);
   // The loads are what the colliders took from the water: the x momentum it lost.
   const double lost = momentum0 - sim->linearMomentum().x();

@@ -66,4 +66,13 @@ constexpr double kSpread[4][kSamples] = {
     0.008, 0.006, 0.003, 0.003, 0.006, 0.007, 0.007, 0.006, 0.004, 0.004, 0.004},
 };
 
+/// Pressure sensors on the far wall, at z/H (3, 15, 30 and 80 mm at H = 0.3 m; the last at
+/// Buchner's P1, 0.2592 H), and P = p / (rho g H) averaged over 3.5 <= T <= 5 from the records
+/// of one run ("peak event 5", Fig. 18, as digitised in the same repository's pressure/ folder).
+/// At 15 mm two sensors side by side read 0.661 and 0.522: the mean is given, and half their
+/// difference (0.07) is the spread across the wall's width. One run: the impact peaks scatter
+/// from run to run (Lobovsky et al. report their statistics over 100), the plateau much less.
+constexpr double kSensorZ[4] = {0.01, 0.05, 0.1, 0.266667};
+constexpr double kSensorPlateau[4] = {0.681, 0.592, 0.589, 0.537};
+
 } // namespace talus::validation::lobovsky

@@ -89,6 +89,10 @@ void damBreakCases(std::vector<Case>& c, const std::string& shared) {
                  for (size_t k = 0; k < r.levelError.size(); ++k)
                    p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.3f", r.levelError[k]) +
                                fmt(", %.3f", r.levelMean[k]) + fmt(" (%.3f)", r.levelMeanExp[k]);
+                 p.detail += "; wall pressure at 3.5-5 (Lobovsky) by z/H:";
+                 for (size_t k = 0; k < r.profile.size(); ++k)
+                   p.detail += fmt(" %.3g", lobovsky::kSensorZ[k]) + fmt(": %.3f", r.profile[k]) +
+                               fmt(" (%.3f)", lobovsky::kSensorPlateau[k]);
                  return p;
                },
                {10, 20, 30},
