@@ -97,6 +97,7 @@ struct WallImpactResult : RunCost {
   /// experiment's (the flow arriving at the wall: H4 stands 0.83 H before it).
   std::vector<std::vector<double>> level;
   std::vector<double> levelError, levelMean, levelMeanExp;
+  std::vector<double> levelErrorExp; ///< per gauge: the experiment's own, its records' half difference the same way
   /// The wall's pressure over 3.5 <= T <= 5 at Lobovsky et al.'s four sensor heights (kSensorZ),
   /// read from the wall's node rows as the wall sensor is.
   std::vector<double> profile;

@@ -147,13 +147,14 @@ void compareLevels(WallImpactResult& res) {
   using namespace lobovsky;
   const int every = int(std::lround(kStepT / 0.01));
   for (size_t k = 0; k < res.level.size(); ++k) {
-    double num = 0, den = 0, mean = 0, meanExp = 0, n = 0;
+    double num = 0, den = 0, spread = 0, mean = 0, meanExp = 0, n = 0;
     for (int i = 0; i < kSamples && size_t(i * every) < res.level[k].size(); ++i) {
       const double h = res.level[k][size_t(i * every)], hExp = kLevel[k][i], T = i * kStepT;
-      num += std::abs(h - hExp), den += hExp;
+      num += std::abs(h - hExp), den += hExp, spread += kSpread[k][i];
       if (T >= 3.5 - 1e-9 && T <= 5 + 1e-9) mean += h, meanExp += hExp, n += 1;
     }
     res.levelError.push_back(den > 0 ? num / den : 0.0);
+    res.levelErrorExp.push_back(den > 0 ? spread / den : 0.0);
     res.levelMean.push_back(n > 0 ? mean / n : 0.0), res.levelMeanExp.push_back(n > 0 ? meanExp / n : 0.0);
   }
 }

@@ -85,9 +85,10 @@ void damBreakCases(std::vector<Case>& c, const std::string& shared) {
                                fmt(" at %.2f", s->peakT) + fmt(", plateau %.3f", s->plateau);
                  p.detail += fmt(" (Buchner onset %.2f", r.exp.onsetT) + fmt(", peak %.3f", r.exp.peak) +
                              fmt(" at %.2f", r.exp.peakT) + fmt(", plateau %.3f)", r.exp.plateau);
-                 p.detail += "; Lobovsky's levels (gauge x/H: error, mean h/H at 3.5-5 (exp))";
+                 p.detail += "; Lobovsky's levels (gauge x/H: error (the records' own), mean h/H at 3.5-5 (exp))";
                  for (size_t k = 0; k < r.levelError.size(); ++k)
                    p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.3f", r.levelError[k]) +
+                               fmt(" (%.3f)", r.levelErrorExp[k]) +
                                fmt(", %.3f", r.levelMean[k]) + fmt(" (%.3f)", r.levelMeanExp[k]);
                  p.detail += "; wall pressure at 3.5-5 (Lobovsky) by z/H:";
                  for (size_t k = 0; k < r.profile.size(); ++k)
