@@ -314,7 +314,7 @@ TEST(OutputMaps, ACoverThatOnlyCreptReadsNoErosionAndAStripTakenReadsItsDepth) {
       EXPECT_NEAR(taken[i], 0.4, 0.02) << x;
       ++stripCells;
     }
-    if (x < 1.01 || x > 1.99) EXPECT_EQ(taken[i], 0.f) << x;
+    if (x < 1.01 || x > 1.99) { EXPECT_EQ(taken[i], 0.f) << x; }
   });
   std::printf("  %zu cells: the creep reads up to %.4f m of erosion at fraction 0, %.4f m at 0.02\n", cells, rawLargest, keptLargest);
   ASSERT_GT(cells, 10u);

@@ -247,8 +247,9 @@ TEST(PeakFiles, Com1dfaGridIsTheMeshCom1dfaWritesAndValuesAreResampledOntoIt) {
       }
       const double rowF = (dem.originY - g.cellCentreY(r)) / dem.cellSize - 0.5;
       const double expect = 0.01 * (g.cellCentreX(c) - 167000) + 0.02 * rowF;
-      if (std::abs(c * 5.0 - 100 * dem.cellSize) > 10 || std::abs(rowF - 100) > 2)
+      if (std::abs(c * 5.0 - 100 * dem.cellSize) > 10 || std::abs(rowF - 100) > 2) {
         EXPECT_NEAR(o, expect, 2e-4 * std::abs(expect)) << c << "," << r;
+      }
     }
   // The mesh lies within the DEM's centres; of the mesh centres around the no-data cell, the one
   // nearest to it has no data, the others take their nearest centre's value.

@@ -161,7 +161,7 @@ TEST(SolidLanes, DruckerPragerMatchesTheScalarReturnAndEveryTargetBitForBit) {
     SCOPED_TRACE(bias);
     const Tally t = checkModel(model, RandomStates(2, bias));
     EXPECT_GT(t.plastic, 500) << "most random states are far outside the cone";
-    if (bias > 0) EXPECT_GT(t.tip, 10) << "stretched states return to the tip";
+    if (bias > 0) { EXPECT_GT(t.tip, 10) << "stretched states return to the tip"; }
   }
 }
 
@@ -203,7 +203,7 @@ TEST(SolidLanes, SofteningDruckerPragerMatchesTheScalarNewtonAndEveryTargetBitFo
           for (int k = 0; k < kSolidLanes; k += 2) io.strain[k] = 0;
         const Tally t = checkModel(model, states);
         EXPECT_GT(t.plastic, 300);
-        if (bias > 0) EXPECT_GT(t.tip, 10) << "stretched states return to the tip";
+        if (bias > 0) { EXPECT_GT(t.tip, 10) << "stretched states return to the tip"; }
       }
     }
 }
@@ -217,7 +217,7 @@ TEST(SolidLanes, MuIMatchesTheScalarReturnAndEveryTargetBitForBit) {
     SCOPED_TRACE(bias);
     const Tally t = checkModel(model, RandomStates(5, bias));
     EXPECT_GT(t.plastic, 500);
-    if (bias > 0) EXPECT_GT(t.tip, 10) << "unconfined states go to the tip";
+    if (bias > 0) { EXPECT_GT(t.tip, 10) << "unconfined states go to the tip"; }
   }
 }
 

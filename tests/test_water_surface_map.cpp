@@ -83,7 +83,7 @@ TEST(WaterSurfaceMap, StillWaterReadsItsLevelOverTheFloorAndAStepWithNoRiseAndDr
   }
   EXPECT_TRUE(std::isnan(at(*map, top, 101.9, 0.07)));
   for (const auto& [key, value] : map->summary())
-    if (key != "water_surface_rise_max_m") EXPECT_EQ(value, "0") << key;
+    if (key != "water_surface_rise_max_m") { EXPECT_EQ(value, "0") << key; }
   EXPECT_TRUE(std::filesystem::exists(dir + "/maps/max_water_surface.tif"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/maps/water_surface_rise.png"));
 }

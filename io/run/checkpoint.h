@@ -19,7 +19,7 @@ std::string checkpointPath(const std::string& dir);
 /// the checkpoint, so a refusal can name the key that changed.
 struct CheckpointIdentity {
   std::string sceneHash;
-  std::string sceneKeys;
+  std::string sceneKeys = {};
 };
 
 /// The checkpoint file format: an HDF5 file behind a 512-byte text header (an HDF5 user block)

@@ -373,7 +373,7 @@ TEST(Ranks, AnErodibleFieldIsBitIdentical) {
     for (const MaterialGroup* g : view->groups()) EXPECT_EQ(g->particles.x.capacity(), g->size());
     view->releaseParticles();
   }
-  if (alone) EXPECT_GT(alone->groups()[0]->size(), 1548u + 20u) << "the pools made few particles: the test would not see their order";
+  if (alone) { EXPECT_GT(alone->groups()[0]->size(), 1548u + 20u) << "the pools made few particles: the test would not see their order"; }
 }
 
 // Memory per rank follows its share (issue 35): the particles, the grid with the terrain's
