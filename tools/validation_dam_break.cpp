@@ -1,5 +1,7 @@
 // The dam-break validation cases: the surge front against Martin & Moyce (1952) and Koshizuka &
-// Oka (1996), and the pressure on the far wall against Buchner (2002). Data: ../shared/validation.
+// Oka (1996), and the pressure on the far wall against Buchner (2002) (data: ../shared/validation),
+// with the water levels and the wall's pressure profile of Lobovsky et al. (2014) in the same
+// tank (tools/validation_lobovsky_data.h).
 #include "tools/validation_cases.h"
 #include "tools/validation_lobovsky_data.h"
 #include "tools/validation_support.h"
