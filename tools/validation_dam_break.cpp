@@ -150,14 +150,17 @@ void compareLevels(WallImpactResult& res) {
   const int every = int(std::lround(kStepT / 0.01));
   for (size_t k = 0; k < res.level.size(); ++k) {
     double num = 0, den = 0, spread = 0, mean = 0, meanExp = 0, n = 0;
+    WallImpactResult::Return back, backExp;
     for (int i = 0; i < kSamples && size_t(i * every) < res.level[k].size(); ++i) {
       const double h = res.level[k][size_t(i * every)], hExp = kLevel[k][i], T = i * kStepT;
-      num += std::abs(h - hExp), den += hExp, spread += kSpread[k][i];
+      if (T <= kSheetUntilT + 1e-9) num += std::abs(h - hExp), den += hExp, spread += kSpread[k][i];
       if (T >= 3.5 - 1e-9 && T <= 5 + 1e-9) mean += h, meanExp += hExp, n += 1;
+      if (T >= WallImpactResult::kReturnFrom - 1e-9) back.see(T, h), backExp.see(T, hExp);
     }
     res.levelError.push_back(den > 0 ? num / den : 0.0);
     res.levelErrorExp.push_back(den > 0 ? spread / den : 0.0);
     res.levelMean.push_back(n > 0 ? mean / n : 0.0), res.levelMeanExp.push_back(n > 0 ? meanExp / n : 0.0);
+    res.back.push_back(back), res.backExp.push_back(backExp);
   }
 }
 
@@ -234,7 +237,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
     for (const ColliderLoad& l : sim->colliderLoads()) wallsImpulse += dt * l.force.x();
     largest = std::max(largest, std::abs(sim->linearMomentum().x()));
   };
-  for (int i = 0; 0.01 * i <= 5.2 + 1e-9; ++i) { // the plateau window ends at 5
+  for (int i = 0; 0.01 * i <= 7.5 + 1e-9; ++i) { // the plateau window ends at 5, the levels' record at 7.5
     const double T = 0.01 * i, tStart = sim->time();
     sim->advanceTo(T / tScale, onStep);
     res.wall.P.push_back(rows.take(sim->time() - tStart, zSensor, T > 3.5 + 1e-9 && T <= 5 + 1e-9));

@@ -90,6 +90,10 @@ void damBreakCases(std::vector<Case>& c, const std::string& shared) {
                    p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.3f", r.levelError[k]) +
                                fmt(" (%.3f)", r.levelErrorExp[k]) +
                                fmt(", %.3f", r.levelMean[k]) + fmt(" (%.3f)", r.levelMeanExp[k]);
+                 p.detail += "; the wave thrown back (gauge: T at h/H 0.4, highest h/H (exp))";
+                 for (size_t k = 1; k < r.back.size(); ++k)
+                   p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.2f", r.back[k].T) + fmt(" (%.2f)", r.backExp[k].T) +
+                               fmt(", %.3f", r.back[k].peak) + fmt(" (%.3f)", r.backExp[k].peak);
                  p.detail += "; wall pressure at 3.5-5 (Lobovsky) by z/H:";
                  for (size_t k = 0; k < r.profile.size(); ++k)
                    p.detail += fmt(" %.3g", lobovsky::kSensorZ[k]) + fmt(": %.3f", r.profile[k]) +
