@@ -106,7 +106,8 @@ TEST(DamBreak, WallPressureAgainstBuchnerSensorP1) {
   // model's sheet 6-8 % deeper than the experiment's (H4, 0.83 H before the wall: 0.184 against
   // 0.171 H). Bounds: 0.15 and 15 %, the measured figures and the experiment's repeatability
   // (its two records differ by up to 0.02 H, 10 % of the sheet; 0.013-0.035 measured as the
-  // error is) with a margin for the particles' noise. A thinner arriving sheet is therefore not why the wall's load at P1 falls short.
+  // error is) with a margin for the particles' noise. A thinner arriving sheet is therefore not
+  // why the wall's load at P1 falls short.
   for (size_t k = 0; k < r.levelError.size(); ++k) {
     std::printf("  Lobovsky gauge %zu: level error %.3f (its two records' own %.3f), mean h/H over 3.5-5 %.3f "
                 "(experiment %.3f)\n", k + 1, r.levelError[k], r.levelErrorExp[k], r.levelMean[k], r.levelMeanExp[k]);

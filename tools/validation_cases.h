@@ -94,19 +94,22 @@ struct WallImpactResult : RunCost {
   /// The water levels at Lobovsky et al. (2014)'s four gauges in the same layout
   /// (tools/validation_lobovsky_data.h): per gauge, h/H every 0.01 in T (the water column in a
   /// footprint a cell wide); Σ|h − h_exp| / Σ h_exp over the experiment's samples (every 0.1,
-  /// T ≤ 5.2, the sheet before the wall's wave returns); and the mean h/H over the plateau's window 3.5 ≤ T ≤ 5, the run's and the
-  /// experiment's (the flow arriving at the wall: H4 stands 0.83 H before it).
+  /// T ≤ 5.2, the sheet before the wall's wave returns); and the mean h/H over the plateau's
+  /// window 3.5 ≤ T ≤ 5, the run's and the experiment's (the flow arriving at the wall: gauge 4
+  /// stands 0.83 H before it).
   std::vector<std::vector<double>> level;
   std::vector<double> levelError, levelMean, levelMeanExp;
   std::vector<double> levelErrorExp; ///< per gauge: the experiment's own, its records' half difference the same way
   /// The wave the far wall throws back, per gauge from T = kReturnFrom: when the level first
-  /// passes kReturnLevel (linear between samples; -1: never by 7.5) and its highest level.
+  /// rises through kReturnLevel (linear between samples; -1: not by 7.5) and its highest level.
   static constexpr double kReturnFrom = 5.5, kReturnLevel = 0.4;
   struct Return {
     double T = -1, peak = 0;
-    double lastT = 0, lastH = 0;
+    double lastT = -1, lastH = 0; ///< the previous sample (lastT < 0: none yet)
+    /// The sample (t, h), in time order.
     void see(double t, double h) {
-      if (T < 0 && h > kReturnLevel && lastT > 0) T = lastT + (t - lastT) * (kReturnLevel - lastH) / (h - lastH);
+      if (T < 0 && lastT >= 0 && lastH <= kReturnLevel && h > kReturnLevel)
+        T = lastT + (t - lastT) * (kReturnLevel - lastH) / (h - lastH);
       peak = std::max(peak, h), lastT = t, lastH = h;
     }
   };

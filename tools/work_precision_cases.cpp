@@ -23,6 +23,23 @@ Point fromCost(double cells, double error, const RunCost& c) {
   return {cells, error, c.wallSeconds, c.particles, c.steps, {}};
 }
 
+/// The wall impact's figures against Lobovsky et al. (2014): the levels, the wave thrown back,
+/// the wall's pressure profile.
+std::string lobovskyDetail(const WallImpactResult& r) {
+  std::string d = "; Lobovsky's levels (gauge x/H: error (the records' own), mean h/H at 3.5-5 (exp))";
+  for (size_t k = 0; k < r.levelError.size(); ++k)
+    d += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.3f", r.levelError[k]) + fmt(" (%.3f)", r.levelErrorExp[k]) +
+         fmt(", %.3f", r.levelMean[k]) + fmt(" (%.3f)", r.levelMeanExp[k]);
+  d += "; the wave thrown back (gauge: T at h/H 0.4, highest h/H (exp))";
+  for (size_t k = 1; k < r.back.size(); ++k)
+    d += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.2f", r.back[k].T) + fmt(" (%.2f)", r.backExp[k].T) +
+         fmt(", %.3f", r.back[k].peak) + fmt(" (%.3f)", r.backExp[k].peak);
+  d += "; wall pressure at 3.5-5 (Lobovsky) by z/H:";
+  for (size_t k = 0; k < r.profile.size(); ++k)
+    d += fmt(" %.3g", lobovsky::kSensorZ[k]) + fmt(": %.3f", r.profile[k]) + fmt(" (%.3f)", lobovsky::kSensorPlateau[k]);
+  return d;
+}
+
 /// Analytic mechanics: a sliding block and an elastic bar.
 void mechanicsCases(std::vector<Case>& c) {
   c.push_back({"sliding_block", "block on a 30° plane turned 20° off the axes, Coulomb μ = 0.3, gravity ramped over 0.2 s",
@@ -85,19 +102,7 @@ void damBreakCases(std::vector<Case>& c, const std::string& shared) {
                                fmt(" at %.2f", s->peakT) + fmt(", plateau %.3f", s->plateau);
                  p.detail += fmt(" (Buchner onset %.2f", r.exp.onsetT) + fmt(", peak %.3f", r.exp.peak) +
                              fmt(" at %.2f", r.exp.peakT) + fmt(", plateau %.3f)", r.exp.plateau);
-                 p.detail += "; Lobovsky's levels (gauge x/H: error (the records' own), mean h/H at 3.5-5 (exp))";
-                 for (size_t k = 0; k < r.levelError.size(); ++k)
-                   p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.3f", r.levelError[k]) +
-                               fmt(" (%.3f)", r.levelErrorExp[k]) +
-                               fmt(", %.3f", r.levelMean[k]) + fmt(" (%.3f)", r.levelMeanExp[k]);
-                 p.detail += "; the wave thrown back (gauge: T at h/H 0.4, highest h/H (exp))";
-                 for (size_t k = 1; k < r.back.size(); ++k)
-                   p.detail += fmt(" %.2f:", lobovsky::kGaugeX[k]) + fmt(" %.2f", r.back[k].T) + fmt(" (%.2f)", r.backExp[k].T) +
-                               fmt(", %.3f", r.back[k].peak) + fmt(" (%.3f)", r.backExp[k].peak);
-                 p.detail += "; wall pressure at 3.5-5 (Lobovsky) by z/H:";
-                 for (size_t k = 0; k < r.profile.size(); ++k)
-                   p.detail += fmt(" %.3g", lobovsky::kSensorZ[k]) + fmt(": %.3f", r.profile[k]) +
-                               fmt(" (%.3f)", lobovsky::kSensorPlateau[k]);
+                 p.detail += lobovskyDetail(r);
                  return p;
                },
                {10, 20, 30},
