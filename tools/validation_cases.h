@@ -3,7 +3,6 @@
 // them to measure error against cost.
 #pragma once
 
-#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -84,6 +83,8 @@ struct PressureSignal {
 };
 struct WallImpactResult : RunCost {
   static constexpr double kFilterT = 0.2;
+  /// The plateau's window 3.5 <= T <= 5 (within rounding of the 0.01 samples).
+  static bool inPlateau(double T) { return T >= 3.5 - 1e-9 && T <= 5 + 1e-9; }
   std::vector<double> T;
   PressureSignal wall, cell;          ///< the two sensors (above)
   PressureSignal exp;                 ///< the digitised data (onset, peak, plateau; P and PFiltered empty)
@@ -101,17 +102,10 @@ struct WallImpactResult : RunCost {
   std::vector<double> levelError, levelMean, levelMeanExp;
   std::vector<double> levelErrorExp; ///< per gauge: the experiment's own, its records' half difference the same way
   /// The wave the far wall throws back, per gauge from T = kReturnFrom: when the level first
-  /// rises through kReturnLevel (linear between samples; -1: not by 7.5) and its highest level.
+  /// exceeds kReturnLevel (linear between samples; -1: not by 7.5) and its highest level.
   static constexpr double kReturnFrom = 5.5, kReturnLevel = 0.4;
   struct Return {
     double T = -1, peak = 0;
-    double lastT = -1, lastH = 0; ///< the previous sample (lastT < 0: none yet)
-    /// The sample (t, h), in time order.
-    void see(double t, double h) {
-      if (T < 0 && lastT >= 0 && lastH <= kReturnLevel && h > kReturnLevel)
-        T = lastT + (t - lastT) * (kReturnLevel - lastH) / (h - lastH);
-      peak = std::max(peak, h), lastT = t, lastH = h;
-    }
   };
   std::vector<Return> back, backExp;
   /// The wall's pressure over 3.5 <= T <= 5 at Lobovsky et al.'s four sensor heights (kSensorZ),

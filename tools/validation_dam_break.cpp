@@ -150,17 +150,21 @@ void compareLevels(WallImpactResult& res) {
   const int every = int(std::lround(kStepT / 0.01));
   for (size_t k = 0; k < res.level.size(); ++k) {
     double num = 0, den = 0, spread = 0, mean = 0, meanExp = 0, n = 0;
-    WallImpactResult::Return back, backExp;
+    std::vector<double> lateT, late, lateExp; // from kReturnFrom: the wave the wall throws back
     for (int i = 0; i < kSamples && size_t(i * every) < res.level[k].size(); ++i) {
       const double h = res.level[k][size_t(i * every)], hExp = kLevel[k][i], T = i * kStepT;
       if (T <= kSheetUntilT + 1e-9) num += std::abs(h - hExp), den += hExp, spread += kSpread[k][i];
-      if (T >= 3.5 - 1e-9 && T <= 5 + 1e-9) mean += h, meanExp += hExp, n += 1;
-      if (T >= WallImpactResult::kReturnFrom - 1e-9) back.see(T, h), backExp.see(T, hExp);
+      if (WallImpactResult::inPlateau(T)) mean += h, meanExp += hExp, n += 1;
+      if (T >= WallImpactResult::kReturnFrom - 1e-9) lateT.push_back(T), late.push_back(h), lateExp.push_back(hExp);
     }
     res.levelError.push_back(den > 0 ? num / den : 0.0);
     res.levelErrorExp.push_back(den > 0 ? spread / den : 0.0);
     res.levelMean.push_back(n > 0 ? mean / n : 0.0), res.levelMeanExp.push_back(n > 0 ? meanExp / n : 0.0);
-    res.back.push_back(back), res.backExp.push_back(backExp);
+    auto wave = [&](const std::vector<double>& v) {
+      return WallImpactResult::Return{firstAbove(lateT, v, WallImpactResult::kReturnLevel),
+                                      v.empty() ? 0.0 : *std::max_element(v.begin(), v.end())};
+    };
+    res.back.push_back(wave(late)), res.backExp.push_back(wave(lateExp));
   }
 }
 
@@ -240,7 +244,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   for (int i = 0; 0.01 * i <= 7.5 + 1e-9; ++i) { // the plateau window ends at 5, the levels' record at 7.5
     const double T = 0.01 * i, tStart = sim->time();
     sim->advanceTo(T / tScale, onStep);
-    res.wall.P.push_back(rows.take(sim->time() - tStart, zSensor, T > 3.5 + 1e-9 && T <= 5 + 1e-9));
+    res.wall.P.push_back(rows.take(sim->time() - tStart, zSensor, WallImpactResult::inPlateau(T) && T > 3.5 + 1e-9));
     res.T.push_back(T), res.cell.P.push_back(wallCellPressure(*sim, length - dx, zSensor, dx) / rows.pScale);
     const std::vector<double> d = levels.depths(*sim);
     for (size_t k = 0; k < d.size(); ++k) res.level[k].push_back(d[k] / H);
@@ -261,7 +265,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
       const double T = res.T[size_t(i)], P = s->PFiltered[size_t(i)];
       if (T <= 3.3 && P > s->peak) s->peak = P, s->peakT = T;
       if (s->onsetT == 0 && P >= 0.1) s->onsetT = T;
-      if (T >= 3.5 && T <= 5.0) s->plateau += P, plateauN += 1;
+      if (WallImpactResult::inPlateau(T)) s->plateau += P, plateauN += 1;
     }
     s->plateau /= std::max(1.0, plateauN);
   }
@@ -269,7 +273,7 @@ WallImpactResult wallImpact(const std::string& pressureFile, const Resolution& r
   for (const auto& [T, P] : data) {
     if (T <= 3.3 && P > res.exp.peak) res.exp.peak = P, res.exp.peakT = T;
     if (res.exp.onsetT == 0 && P >= 0.1) res.exp.onsetT = T;
-    if (T >= 3.5 && T <= 5.0) res.exp.plateau += P, plateauExpN += 1;
+    if (WallImpactResult::inPlateau(T)) res.exp.plateau += P, plateauExpN += 1;
   }
   res.exp.plateau /= std::max(1.0, plateauExpN);
   compareLevels(res);

@@ -71,14 +71,6 @@ double relativeL1(const std::vector<double>& a, const std::vector<double>& b) {
   return den > 0 ? num / den : 0.0;
 }
 
-/// The first time a record exceeds `level`, linear between the samples around the crossing (the
-/// run is sampled every 0.01 s, so its arrival is not rounded up to a sample); -1 when it never does.
-double firstAbove(const std::vector<double>& t, const std::vector<double>& v, double level) {
-  for (size_t i = 0; i < v.size(); ++i)
-    if (v[i] > level) return i == 0 ? t[0] : t[i - 1] + (t[i] - t[i - 1]) * (level - v[i - 1]) / (v[i] - v[i - 1]);
-  return -1;
-}
-
 /// About r.cells across the depth, and a whole number across the half width (on node rows).
 double obstacleDx(const Resolution& r) { return kHalfWidth / std::max(1.0, std::round(kHalfWidth * r.cells / kDepth)); }
 

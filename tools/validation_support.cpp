@@ -46,6 +46,12 @@ std::vector<double> movingAverage(const std::vector<double>& v, int half) {
   return out;
 }
 
+double firstAbove(const std::vector<double>& t, const std::vector<double>& v, double level) {
+  for (size_t i = 0; i < v.size(); ++i)
+    if (v[i] > level) return i == 0 ? t[0] : t[i - 1] + (t[i] - t[i - 1]) * (level - v[i - 1]) / (v[i] - v[i - 1]);
+  return -1;
+}
+
 double contiguousFront(const Simulation& sim, double bin, double channelWidth, double threshold, double maxGap) {
   std::map<int, double> volume;
   const double ox = sim.settings().origin.x();

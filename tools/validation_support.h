@@ -21,6 +21,10 @@ std::unique_ptr<Simulation> build(const std::string& toml, const Resolution& r, 
 void finish(const Simulation& sim, Clock::time_point t0, RunCost& cost);
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 
+/// The first time a record v(t) exceeds `level`, linear between the samples around the crossing
+/// (so an arrival is not rounded up to a sample); t[0] when it starts above, -1 when it never is.
+double firstAbove(const std::vector<double>& t, const std::vector<double>& v, double level);
+
 /// Centred moving average of v over 2 half + 1 samples (fewer at the ends), summed in index order.
 std::vector<double> movingAverage(const std::vector<double>& v, int half);
 
