@@ -19,6 +19,10 @@ public:
   /// Collective: the largest / smallest value over all ranks (exact: no rounding).
   virtual double maxOf(double v) = 0;
   virtual double minOf(double v) = 0;
+  /// Collective: maxOf, but a rank that arrives early sleeps between looks instead of spinning,
+  /// which leaves its core to a rank still working on the same machine (rank 0's end-of-run
+  /// files, RunRanks::onRootWithNodeCores). A millisecond later at most. This default is maxOf.
+  virtual double maxOfIdle(double v) { return maxOf(v); }
   virtual uint64_t sumOf(uint64_t v) = 0;
   /// Collective: element-wise sums of n doubles over all ranks, into v on every rank.
   virtual void sum(double* v, size_t n) = 0;

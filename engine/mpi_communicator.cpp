@@ -5,6 +5,7 @@
 #include <climits>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 #ifdef TALUS_HAVE_MPI
 // The C API only: Open MPI's deprecated C++ bindings would need libmpi_cxx.
@@ -72,6 +73,16 @@ public:
   int size() const override { return size_; }
   double maxOf(double v) override { return reduce(v, MPI_MAX); }
   double minOf(double v) override { return reduce(v, MPI_MIN); }
+  double maxOfIdle(double v) override {
+    Stopwatch t(seconds, collectives);
+    double out = 0;
+    MPI_Request request;
+    MPI_Iallreduce(&v, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD, &request);
+    // MPI_Test also drives the reduction's progress; half a millisecond asleep between looks.
+    for (int done = 0; MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done;)
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    return out;
+  }
   uint64_t sumOf(uint64_t v) override {
     Stopwatch t(seconds, collectives);
     uint64_t out = 0;

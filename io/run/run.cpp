@@ -19,6 +19,7 @@
 #include <optional>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 namespace talus {
 
@@ -54,6 +55,7 @@ struct Run::State {
   OutputSettings output;
   std::vector<std::string> materialNames;
   CheckpointIdentity identity;
+  int threads = 1; ///< TBB threads of this process
   std::unique_ptr<tbb::global_control> threadLimit;
   std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
   Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
@@ -76,14 +78,28 @@ struct Run::State {
   void releaseView() {
     if (viewed) viewed->releaseParticles();
   }
+  /// Runs f on `cores` threads when that is more than the run's own: the cores the other ranks
+  /// lend rank 0 for the end's files (RunRanks::onRootWithNodeCores).
+  template <class F> void withThreads(int cores, F&& f) {
+    if (cores <= threads) return f();
+    auto limit = [](int n) { return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(n)); };
+    threadLimit = limit(cores); // the old limit goes after the new one is in force
+    struct Back {
+      State& s;
+      std::unique_ptr<tbb::global_control> (*limit)(int);
+      ~Back() { s.threadLimit = limit(s.threads); }
+    } back{*this, +limit};
+    // Another limit in force (a caller's own, as the tests keep) still holds.
+    tbb::task_arena(int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))).execute(f);
+  }
 };
 
 Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>(scene, opt)) {
   State& s = *s_;
   res_.outDir = opt.outDir.empty() ? scene.output.directory : opt.outDir;
   endTime_ = scene.endTime;
-  const int threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
-  s.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(threads));
+  s.threads = opt.threads > 0 ? opt.threads : int(tbb::info::default_concurrency());
+  s.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(s.threads));
   sim_ = std::make_unique<Simulation>(scene.settings, std::move(scene.groups));
   // With ranks, rank 0 writes every output from a view of the whole run (Simulation::gatherInto).
   if (s.ranks.active() && s.ranks.root()) {
@@ -98,7 +114,7 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   }
   s.view = s.viewed ? s.viewed.get() : sim_.get();
   s.info.scene = scene.file;
-  s.info.threads = threads;
+  s.info.threads = s.threads;
   s.info.materialNames = scene.materialNames;
   s.info.notes = scene.notes;
   s.summaryFile = (fs::path(res_.outDir) / "summary.json").string();
@@ -336,10 +352,13 @@ void Run::finish() {
   if (!interrupted) {
     s.gatherView(*sim_);
     gatherOutputState();
-    s.ranks.onRoot([&] {
-      s.outputs->finish(*s.view, res_.status == RunStatus::Completed);
-      if (res_.status == RunStatus::Completed)
-        writeParticlesH5((fs::path(res_.outDir) / "particles.h5").string(), *s.view, s.materialNames);
+    // The end's maps and film take seconds on rank 0 while the others would only wait.
+    s.ranks.onRootWithNodeCores(s.threads, [&](int cores) {
+      s.withThreads(cores, [&] {
+        s.outputs->finish(*s.view, res_.status == RunStatus::Completed);
+        if (res_.status == RunStatus::Completed)
+          writeParticlesH5((fs::path(res_.outDir) / "particles.h5").string(), *s.view, s.materialNames);
+      });
     });
   }
   if (s.ranks.active()) s.info.ranks = rankFigures(*sim_);

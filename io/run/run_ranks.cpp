@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <sched.h>
+#include <unistd.h>
 
 namespace talus {
 
@@ -26,6 +28,46 @@ void RootLoadBalance::afterStep(const RunRanks& ranks, Simulation& sim) {
   std::vector<double> shares(size_t(n), (1 - share_) / (n - 1));
   shares[0] = share_;
   sim.setRankShares(std::move(shares));
+}
+
+namespace {
+/// What a rank tells rank 0 when it lends its CPUs.
+struct Lender {
+  char host[64];
+  cpu_set_t cpus;
+};
+} // namespace
+
+CoreLoan::CoreLoan(const RunRanks& ranks, int threadsPerRank) {
+  if (!ranks.active()) return;
+  Lender mine{};
+  gethostname(mine.host, sizeof mine.host - 1);
+  if (sched_getaffinity(0, sizeof mine.cpus, &mine.cpus) != 0) CPU_ZERO(&mine.cpus); // lends nothing
+  std::vector<char> bytes(sizeof mine);
+  std::memcpy(bytes.data(), &mine, sizeof mine);
+  std::vector<size_t> counts;
+  const std::vector<char> all = ranks.comm().gather(bytes, counts);
+  if (!ranks.root() || CPU_COUNT(&mine.cpus) == 0) return;
+  cpu_set_t wide = mine.cpus;
+  int here = 1; // ranks on rank 0's machine
+  for (size_t at = sizeof mine; at + sizeof mine <= all.size(); at += sizeof mine) {
+    Lender other;
+    std::memcpy(&other, all.data() + at, sizeof other);
+    if (std::strncmp(other.host, mine.host, sizeof mine.host) != 0) continue;
+    CPU_OR(&wide, &wide, &other.cpus);
+    ++here;
+  }
+  if (here == 1 || sched_setaffinity(0, sizeof wide, &wide) != 0) return;
+  own_.resize(sizeof mine.cpus);
+  std::memcpy(own_.data(), &mine.cpus, sizeof mine.cpus);
+  cores_ = std::min(CPU_COUNT(&wide), std::max(threadsPerRank, 1) * here);
+}
+
+CoreLoan::~CoreLoan() {
+  if (own_.empty()) return;
+  cpu_set_t own;
+  std::memcpy(&own, own_.data(), sizeof own);
+  sched_setaffinity(0, sizeof own, &own); // back on its own cores; nothing to do if refused
 }
 
 std::vector<RankFigures> rankFigures(const Simulation& sim) {

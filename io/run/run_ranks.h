@@ -9,11 +9,34 @@
 
 #include <exception>
 #include <memory>
+#include <vector>
 
 namespace talus {
 
 /// Thrown on ranks other than 0 when rank 0 failed (it reports the failure).
 struct PeerFailed {};
+
+class RunRanks;
+
+/// Collective: the ranks on rank 0's machine lend it their CPUs. While the loan lives, rank 0's
+/// calling thread may run on the union of their CPU sets (mpirun binds each rank to its own
+/// cores); threads and programs it starts meanwhile inherit that set. The lenders have nothing to
+/// do in the meantime but wait with Communicator::maxOfIdle. Nothing happens without ranks.
+class CoreLoan {
+public:
+  /// `threadsPerRank`: what each rank runs (the same command line on every rank).
+  CoreLoan(const RunRanks& ranks, int threadsPerRank);
+  ~CoreLoan(); ///< rank 0 gets its own CPU set back
+  CoreLoan(const CoreLoan&) = delete;
+  CoreLoan& operator=(const CoreLoan&) = delete;
+  /// Threads rank 0 may run during the loan: the lent CPUs, at most threadsPerRank per rank on its
+  /// machine; 0 when nothing was lent (one process, no other rank there, or elsewhere than rank 0).
+  int cores() const { return cores_; }
+
+private:
+  std::vector<char> own_; ///< rank 0's CPU set before the loan (a cpu_set_t), when it widened it
+  int cores_ = 0;
+};
 
 class RunRanks {
 public:
@@ -26,22 +49,37 @@ public:
 
   /// Runs f on the root; then every rank learns whether it threw: the root rethrows, the others
   /// throw PeerFailed.
-  template <class F> void onRoot(F&& f) {
+  template <class F> void onRoot(F&& f) { settle(attempt(f), false); }
+  /// onRoot for rank 0's long end-of-run work (maps, film, particles): the other ranks on its
+  /// machine wait asleep and lend it their cores (CoreLoan), and f(cores) is told how many
+  /// threads it may run (0: its own only). Collective. Throws as onRoot.
+  template <class F> void onRootWithNodeCores(int threadsPerRank, F&& f) {
     std::exception_ptr failed;
-    if (root()) {
-      try {
-        f();
-      } catch (...) {
-        failed = std::current_exception();
-      }
+    {
+      const CoreLoan loan(*this, threadsPerRank);
+      failed = attempt([&] { f(loan.cores()); });
     }
-    if (active() && comm_->maxOf(failed ? 1 : 0) > 0 && !root()) throw PeerFailed{};
-    if (failed) std::rethrow_exception(failed);
+    settle(failed, true);
   }
   /// The largest of every rank's v (v itself without ranks).
   int agree(int v) const { return active() ? int(comm_->maxOf(v)) : v; }
 
 private:
+  /// f's exception on the root (null elsewhere, or when f returned).
+  template <class F> std::exception_ptr attempt(F&& f) {
+    if (!root()) return nullptr;
+    try {
+      f();
+    } catch (...) {
+      return std::current_exception();
+    }
+    return nullptr;
+  }
+  void settle(const std::exception_ptr& failed, bool idle) {
+    const double v = failed ? 1 : 0;
+    if (active() && (idle ? comm_->maxOfIdle(v) : comm_->maxOf(v)) > 0 && !root()) throw PeerFailed{};
+    if (failed) std::rethrow_exception(failed);
+  }
   std::shared_ptr<Communicator> comm_;
 };
 

@@ -1,15 +1,21 @@
 // Rank 0's view of the run (io/run/run.cpp, Simulation::gatherInto): the particles of every rank
 // come to it one rank at a time, into arrays sized for all of them, and it holds them only while
-// files are written from it. Run under mpirun with the other MPI tests (tests/CMakeLists.txt).
+// files are written from it; for those files the other ranks on its machine lend it their cores.
+// Run under mpirun with the other MPI tests (tests/CMakeLists.txt).
 #include "engine/simulation.h"
 #include "io/run/run.h"
+#include "io/run/run_ranks.h"
 #include "io/scene/scene.h"
 #include "small_collapse.h"
 #include "world.h"
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <sched.h>
+#include <stdexcept>
+#include <unistd.h>
 
 using namespace talus;
 using talus::test::world;
@@ -87,4 +93,65 @@ checkpoint_interval = 0.03
   const auto& files = run.result().files;
   EXPECT_NE(std::find(files.begin(), files.end(), "frames/particles_00002.h5"), files.end()) << "frames were written";
   EXPECT_GE(run.result().checkpointTime, 0.06) << "checkpoints were written";
+}
+
+namespace {
+/// This rank's host name and CPU set, as the loan reads them.
+struct Place {
+  char host[64] = {};
+  cpu_set_t cpus;
+};
+Place here() {
+  Place p;
+  gethostname(p.host, sizeof p.host - 1);
+  sched_getaffinity(0, sizeof p.cpus, &p.cpus);
+  return p;
+}
+} // namespace
+
+TEST(RankZero, BorrowsTheCpusOfTheRanksOnItsMachineForTheEndsFiles) {
+  // mpirun binds each of two ranks to its own core: rank 0 draws the film and maps at the end
+  // with both, while the other sleeps (at four ranks on two cores nothing is bound and the sets
+  // are already whole).
+  const Place mine = here();
+  std::vector<char> bytes(sizeof mine);
+  std::memcpy(bytes.data(), &mine, sizeof mine);
+  std::vector<size_t> counts;
+  const std::vector<char> all = world->gather(bytes, counts);
+  cpu_set_t wide = mine.cpus;
+  int ranksHere = 0;
+  for (size_t at = 0; at + sizeof mine <= all.size(); at += sizeof mine) {
+    Place other;
+    std::memcpy(&other, all.data() + at, sizeof other);
+    if (std::strncmp(other.host, mine.host, sizeof mine.host) != 0) continue;
+    CPU_OR(&wide, &wide, &other.cpus);
+    ++ranksHere;
+  }
+  RunRanks ranks(world);
+  const bool root = world->rank() == 0;
+  {
+    const CoreLoan loan(ranks, 1);
+    const Place during = here();
+    if (root) {
+      EXPECT_TRUE(CPU_EQUAL(&during.cpus, &wide)) << "rank 0 runs on every lent CPU";
+      EXPECT_EQ(loan.cores(), std::min(CPU_COUNT(&wide), ranksHere)) << "one thread per lending rank at most";
+    } else {
+      EXPECT_TRUE(CPU_EQUAL(&during.cpus, &mine.cpus)) << "a lender keeps its own set";
+      EXPECT_EQ(loan.cores(), 0);
+    }
+    EXPECT_EQ(world->maxOfIdle(world->rank()), world->size() - 1) << "the sleeping wait is a reduction";
+  }
+  const Place after = here();
+  EXPECT_TRUE(CPU_EQUAL(&after.cpus, &mine.cpus)) << "the loan ends with rank 0 on its own set";
+  // A failure on rank 0 during the loan reaches every rank, as onRoot's does.
+  bool peerFailed = false, thrown = false;
+  try {
+    ranks.onRootWithNodeCores(1, [](int) { throw std::runtime_error("disk full"); });
+  } catch (const PeerFailed&) {
+    peerFailed = true;
+  } catch (const std::runtime_error&) {
+    thrown = true;
+  }
+  EXPECT_EQ(thrown, root);
+  EXPECT_EQ(peerFailed, !root);
 }
