@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,9 @@ public:
   std::vector<uint32_t> blockStart;
 
   virtual const char* modelName() const = 0;
+  /// The same material (name, index, density, model, basal law) without particles: rank 0's view
+  /// of a run on ranks (Simulation::emptyView).
+  virtual std::unique_ptr<MaterialGroup> emptyCopy() const = 0;
   /// Fastest elastic/acoustic wave speed (m/s); limits the time step.
   virtual double waveSpeed() const = 0;
   /// Any other limit on dt (s) this material imposes at grid spacing dx (e.g. viscosity).

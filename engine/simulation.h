@@ -128,7 +128,17 @@ public:
   /// (DomainDecomposition::setShares); ranks rebalance toward them when they pass the threshold.
   void setRankShares(std::vector<double> shares) { ranks_->setShares(std::move(shares)); }
   const HaloExchange& halo() const { return halo_; }
-  /// Collective: rank 0's `view` (a Simulation built from the same scene, never stepped) gets
+  /// Rank 0's view of a run on ranks: a Simulation of the same settings, materials, colliders,
+  /// terrain (shared, not built again) and erodible bed, with no particles and never stepped;
+  /// gatherSeededInto and gatherInto fill it. Call before the first step.
+  std::unique_ptr<Simulation> emptyView() const;
+  /// Collective, before distribute: rank 0's `view` (from emptyView) gets every rank's particles
+  /// as seeded, in one process's order, with the initial mass and largest speed one process
+  /// computes from them. `seedIndex` as distribute's, or null when every rank holds every
+  /// particle (then rank 0 copies its own). Other ranks pass a null view. Throws
+  /// std::logic_error when the view is passed elsewhere than on rank 0.
+  void gatherSeededInto(Communicator& comm, Simulation* view, const std::vector<std::vector<uint64_t>>* seedIndex) const;
+  /// Collective: rank 0's `view` (from emptyView, never stepped) gets
   /// every rank's particles in one process's order, the clock, counters, loads and mass ledger,
   /// so outputs written from it are one process's files. Other ranks pass null. The per-step
   /// outputs never need it (they step in parts); frames, checkpoints and the end's files do.

@@ -384,46 +384,4 @@ void Simulation::RankPhases::throwNonFinite() const {
   throw NumericalError("non-finite particle state at step " + std::to_string(s.steps_));
 }
 
-void Simulation::gatherInto(Simulation* view) {
-  Communicator& comm = ranks_->comm();
-  if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
-  for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
-    const MaterialGroup& g = *groupPtrs_[gi];
-    MaterialGroup* to = view ? view->groupPtrs_[gi] : nullptr;
-    if (to) to->particles.resize(0), to->resizeState(0);
-    // The particles the bed made since binning come after every rank's others, as one process
-    // has them: gathered as a second part when there is a bed.
-    const size_t fresh = gi < fresh_.size() ? fresh_[gi] : 0;
-    const uint64_t made = bed_ ? comm.sumOf(uint64_t(fresh)) : 0;
-    const size_t record = ParticleSet::bytesPerParticle() + g.stateBytesPerParticle();
-    // Rank 0 appends one rank's particles at a time to arrays sized for all of them at once, so
-    // it holds the whole run once, not a second time in a gathered buffer.
-    auto gatherRange = [&](size_t begin, size_t end, uint64_t after) {
-      std::vector<char> mine;
-      std::vector<uint32_t> idx(end - begin);
-      for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(begin + i);
-      packParticles(g, idx, mine);
-      comm.gatherEach(
-          mine,
-          [&](const std::vector<size_t>& counts) {
-            size_t bytes = 0;
-            for (size_t c : counts) bytes += c;
-            to->reserve(to->size() + bytes / record + size_t(after));
-          },
-          [&](int, std::string_view part) { appendParticles(*to, part); });
-    };
-    gatherRange(0, g.size() - fresh, made);
-    if (bed_) gatherRange(g.size() - fresh, g.size(), 0);
-    if (to) to->setRankMinima(g.rankMinima());
-  }
-  std::vector<double> removed = massRemoved_;
-  if (!removed.empty()) comm.sum(removed.data(), removed.size());
-  if (!view) return;
-  view->time_ = time_, view->steps_ = steps_, view->particleSteps_ = particleSteps_, view->maxSpeed_ = maxSpeed_;
-  view->loads_ = loads_;
-  if (bed_) *view->bed_ = *bed_; // replicated on every rank
-  view->massRemoved_ = removed;
-  view->times_ = times_;
-}
-
 } // namespace talus

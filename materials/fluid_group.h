@@ -21,6 +21,13 @@ public:
   std::vector<float> dJ; ///< J - 1 per particle
 
   const char* modelName() const override { return TaitWaterModel::kName; }
+  std::unique_ptr<MaterialGroup> emptyCopy() const override {
+    auto g = std::make_unique<FluidGroup>(name(), index(), density(), model);
+    g->hydrostatic = hydrostatic;
+    g->basalLaw = basalLaw;
+    g->minJ_ = minJ_;
+    return g;
+  }
   double waveSpeed() const override { return model.soundSpeed(density(), minJ_); }
   double stableDtLimit(double dx) const override {
     // Explicit viscous diffusion is stable for dt < rho dx^2 / (6 eta) in 3-D; keep half of it.

@@ -20,6 +20,12 @@ public:
   typename Model::State initialState{};       ///< state of newly seeded particles
 
   const char* modelName() const override { return Model::kName; }
+  std::unique_ptr<MaterialGroup> emptyCopy() const override {
+    auto g = std::make_unique<SolidGroup>(name(), index(), density(), model);
+    g->initialState = initialState;
+    g->basalLaw = basalLaw;
+    return g;
+  }
   double waveSpeed() const override { return model.waveSpeed(density()); }
 
   bool averagesVolume() const override { return true; }

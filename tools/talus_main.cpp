@@ -55,10 +55,7 @@ int cmdRun(const std::string& scene, const std::string& out, int threads, const 
   opt.threads = threads;
   opt.progress = !quiet;
   opt.handleSignals = true;
-  if (gRanks && gRanks->size() > 1) {
-    opt.ranks = gRanks;
-    opt.viewScene = [&] { return load(scene, sets); };
-  }
+  if (gRanks && gRanks->size() > 1) opt.ranks = gRanks;
   const size_t n = setup.seededParticles();
   if (!quiet)
     std::fprintf(stderr, "talus: %s: %zu particles, dx %g m, end time %g s\n", setup.file.c_str(), n,

@@ -109,8 +109,7 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
     // (docs/scaling.md, "Rank 0's view"). A threshold set once is not moved, and the view's
     // arrays stay mapped apart, returned whole when freed.
     mallopt(M_MMAP_THRESHOLD, 128 * 1024); // glibc's default
-    SceneSetup again = opt.viewScene();
-    s.viewed = std::make_unique<Simulation>(again.settings, std::move(again.groups));
+    s.viewed = sim_->emptyView(); // filled from the ranks' parts below, not seeded again
   }
   s.view = s.viewed ? s.viewed.get() : sim_.get();
   s.info.scene = scene.file;
@@ -124,7 +123,11 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   // Outputs always start from the initial state (maps keep its thicknesses for erosion); a
   // resumed run then replaces their accumulated state with the checkpoint's. A refused
   // checkpoint throws InputError before anything is written.
+  // Each rank seeded its part (unless resumed: then every rank read every particle).
+  const bool seededInParts = scene.seedSlice.active() && !opt.resume;
   guarded([&] {
+    // The outputs' start and frame 0 read every particle as seeded, in one process's order.
+    if (s.ranks.active()) sim_->gatherSeededInto(s.ranks.comm(), s.viewed.get(), seededInParts ? &scene.seedSlice.index : nullptr);
     s.ranks.onRoot([&] {
       makeDirectories(res_.outDir);
       s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
@@ -153,8 +156,6 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       ++s.frame;
     }
     if (s.ranks.active()) {
-      // Each rank seeded its part (unless resumed: then every rank read every particle).
-      const bool seededInParts = scene.seedSlice.active() && !opt.resume;
       sim_->distribute(opt.ranks, 0.1, seededInParts ? &scene.seedSlice.index : nullptr);
       s.releaseView(); // its whole initial state served the outputs' start and frame 0
       shareOutputState();

@@ -21,11 +21,10 @@ struct RunOptions {
   /// Answer SIGINT/SIGTERM (stop after this step with a checkpoint) and SIGUSR1 (checkpoint now)
   /// for the run's duration (io/run/run_signals.h). The talus program sets it.
   bool handleSignals = false;
-  /// MPI ranks (mpirun talus run): every rank runs runScene with the same scene; rank 0 writes
-  /// every file from a gathered view built by `viewScene` (the scene loaded once more). Null: one
-  /// process.
+  /// MPI ranks (mpirun talus run): every rank runs runScene with the same scene, seeded in its
+  /// part (SeedSlice) or whole; rank 0 writes every file from a view gathered from the ranks
+  /// (Simulation::emptyView). Null: one process.
   std::shared_ptr<Communicator> ranks;
-  std::function<SceneSetup()> viewScene;
 };
 
 enum class RunStatus {

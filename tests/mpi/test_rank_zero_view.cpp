@@ -73,7 +73,6 @@ checkpoint_interval = 0.03
   opt.threads = 1;
   opt.progress = false;
   opt.ranks = world;
-  opt.viewScene = load;
   talus::Run run(load(), opt);
   const bool root = world->rank() == 0;
   EXPECT_EQ(run.viewCapacity(), 0u) << "after the start's frame the view is emptied";

@@ -1,0 +1,115 @@
+// Rank 0's view of a run on MPI ranks (io/run/run.cpp): a Simulation that is never stepped and
+// holds every particle only while files are written from it. It shares the run's terrain and
+// colliders' geometry, and is filled from the ranks' parts in one process's order, so a file
+// written from it is one process's file.
+#include "engine/simulation.h"
+
+#include <numeric>
+#include <string_view>
+
+namespace talus {
+
+std::unique_ptr<Simulation> Simulation::emptyView() const {
+  std::vector<std::unique_ptr<MaterialGroup>> groups;
+  for (const MaterialGroup* g : groupPtrs_) groups.push_back(g->emptyCopy());
+  auto view = std::make_unique<Simulation>(settings_, std::move(groups)); // the covers are in bed_
+  if (bed_) view->bed_ = std::make_unique<ErodibleBed>(*bed_);
+  return view;
+}
+
+void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
+                                  const std::vector<std::vector<uint64_t>>* seedIndex) const {
+  if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherSeededInto: rank 0 and only rank 0 passes a view");
+  for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
+    const MaterialGroup& g = *groupPtrs_[gi];
+    MaterialGroup* to = view ? view->groupPtrs_[gi] : nullptr;
+    std::vector<uint32_t> idx(g.size());
+    std::iota(idx.begin(), idx.end(), 0u);
+    std::vector<char> records;
+    if (!seedIndex) { // every rank holds every particle
+      if (!to) continue;
+      packParticles(g, idx, records);
+      to->release();
+      appendParticles(*to, records);
+      continue;
+    }
+    static const std::vector<uint64_t> none;
+    const auto& key = size_t(g.index()) < seedIndex->size() ? (*seedIndex)[size_t(g.index())] : none;
+    if (key.size() != g.size()) throw std::logic_error("gatherSeededInto: one index per particle");
+    // Per rank: its particles' indices in one process's arrays, then their records.
+    std::vector<char> mine(key.size() * sizeof(uint64_t));
+    if (!key.empty()) std::memcpy(mine.data(), key.data(), mine.size());
+    packParticles(g, idx, records);
+    mine.insert(mine.end(), records.begin(), records.end());
+    std::vector<size_t> counts;
+    const std::vector<char> all = comm.gather(mine, counts);
+    if (!to) continue;
+    const size_t rec = ParticleSet::bytesPerParticle() + g.stateBytesPerParticle();
+    std::vector<std::pair<uint64_t, const char*>> order;
+    size_t at = 0;
+    for (size_t c : counts) {
+      const size_t n = c / (sizeof(uint64_t) + rec);
+      for (size_t i = 0; i < n; ++i) {
+        uint64_t k;
+        std::memcpy(&k, all.data() + at + i * sizeof(uint64_t), sizeof k);
+        order.push_back({k, all.data() + at + n * sizeof(uint64_t) + i * rec});
+      }
+      at += c;
+    }
+    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<char> ordered(order.size() * rec);
+    for (size_t i = 0; i < order.size(); ++i) std::memcpy(ordered.data() + i * rec, order[i].second, rec);
+    to->release();
+    appendParticles(*to, ordered);
+  }
+  if (!view) return;
+  // What the constructor computes from the particles, as one process computes it from all of them.
+  view->initialMass_ = view->totalMass();
+  view->maxSpeed_ = 0;
+  for (const MaterialGroup* g : view->groupPtrs_)
+    for (const Vec3& v : g->particles.v) view->maxSpeed_ = std::max(view->maxSpeed_, double(v.norm()));
+}
+
+void Simulation::gatherInto(Simulation* view) {
+  Communicator& comm = ranks_->comm();
+  if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
+  for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
+    const MaterialGroup& g = *groupPtrs_[gi];
+    MaterialGroup* to = view ? view->groupPtrs_[gi] : nullptr;
+    if (to) to->particles.resize(0), to->resizeState(0);
+    // The particles the bed made since binning come after every rank's others, as one process
+    // has them: gathered as a second part when there is a bed.
+    const size_t fresh = gi < fresh_.size() ? fresh_[gi] : 0;
+    const uint64_t made = bed_ ? comm.sumOf(uint64_t(fresh)) : 0;
+    const size_t record = ParticleSet::bytesPerParticle() + g.stateBytesPerParticle();
+    // Rank 0 appends one rank's particles at a time to arrays sized for all of them at once, so
+    // it holds the whole run once, not a second time in a gathered buffer.
+    auto gatherRange = [&](size_t begin, size_t end, uint64_t after) {
+      std::vector<char> mine;
+      std::vector<uint32_t> idx(end - begin);
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(begin + i);
+      packParticles(g, idx, mine);
+      comm.gatherEach(
+          mine,
+          [&](const std::vector<size_t>& counts) {
+            size_t bytes = 0;
+            for (size_t c : counts) bytes += c;
+            to->reserve(to->size() + bytes / record + size_t(after));
+          },
+          [&](int, std::string_view part) { appendParticles(*to, part); });
+    };
+    gatherRange(0, g.size() - fresh, made);
+    if (bed_) gatherRange(g.size() - fresh, g.size(), 0);
+    if (to) to->setRankMinima(g.rankMinima());
+  }
+  std::vector<double> removed = massRemoved_;
+  if (!removed.empty()) comm.sum(removed.data(), removed.size());
+  if (!view) return;
+  view->time_ = time_, view->steps_ = steps_, view->particleSteps_ = particleSteps_, view->maxSpeed_ = maxSpeed_;
+  view->loads_ = loads_;
+  if (bed_) *view->bed_ = *bed_; // replicated on every rank
+  view->massRemoved_ = removed;
+  view->times_ = times_;
+}
+
+} // namespace talus
