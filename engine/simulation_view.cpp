@@ -17,50 +17,66 @@ std::unique_ptr<Simulation> Simulation::emptyView() const {
   return view;
 }
 
+namespace {
+/// Rank 0: the records of one window of one process's indices, from every rank (each as its
+/// indices, then its records), appended to `to` in index order.
+void appendInIndexOrder(MaterialGroup& to, const std::vector<char>& all, const std::vector<size_t>& counts, size_t rec) {
+  std::vector<std::pair<uint64_t, const char*>> order;
+  size_t at = 0;
+  for (size_t c : counts) {
+    const size_t n = c / (sizeof(uint64_t) + rec);
+    for (size_t i = 0; i < n; ++i) {
+      uint64_t k;
+      std::memcpy(&k, all.data() + at + i * sizeof(uint64_t), sizeof k);
+      order.push_back({k, all.data() + at + n * sizeof(uint64_t) + i * rec});
+    }
+    at += c;
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<char> ordered(order.size() * rec);
+  for (size_t i = 0; i < order.size(); ++i) std::memcpy(ordered.data() + i * rec, order[i].second, rec);
+  appendParticles(to, ordered);
+}
+} // namespace
+
 void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
                                   const std::vector<std::vector<uint64_t>>* seedIndex) const {
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherSeededInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
     const MaterialGroup& g = *groupPtrs_[gi];
     MaterialGroup* to = view ? view->groupPtrs_[gi] : nullptr;
-    std::vector<uint32_t> idx(g.size());
-    std::iota(idx.begin(), idx.end(), 0u);
     std::vector<char> records;
     if (!seedIndex) { // every rank holds every particle
       if (!to) continue;
+      std::vector<uint32_t> idx(g.size());
+      std::iota(idx.begin(), idx.end(), 0u);
       packParticles(g, idx, records);
       to->release();
+      to->reserve(g.size());
       appendParticles(*to, records);
       continue;
     }
     static const std::vector<uint64_t> none;
     const auto& key = size_t(g.index()) < seedIndex->size() ? (*seedIndex)[size_t(g.index())] : none;
     if (key.size() != g.size()) throw std::logic_error("gatherSeededInto: one index per particle");
-    // Per rank: its particles' indices in one process's arrays, then their records.
-    std::vector<char> mine(key.size() * sizeof(uint64_t));
-    if (!key.empty()) std::memcpy(mine.data(), key.data(), mine.size());
-    packParticles(g, idx, records);
-    mine.insert(mine.end(), records.begin(), records.end());
-    std::vector<size_t> counts;
-    const std::vector<char> all = comm.gather(mine, counts);
-    if (!to) continue;
+    // In windows of one process's indices, each one message at most, so rank 0 holds the view
+    // and one window, not every rank's records besides.
     const size_t rec = ParticleSet::bytesPerParticle() + g.stateBytesPerParticle();
-    std::vector<std::pair<uint64_t, const char*>> order;
-    size_t at = 0;
-    for (size_t c : counts) {
-      const size_t n = c / (sizeof(uint64_t) + rec);
-      for (size_t i = 0; i < n; ++i) {
-        uint64_t k;
-        std::memcpy(&k, all.data() + at + i * sizeof(uint64_t), sizeof k);
-        order.push_back({k, all.data() + at + n * sizeof(uint64_t) + i * rec});
-      }
-      at += c;
+    const uint64_t total = comm.sumOf(uint64_t(key.size()));
+    const uint64_t window = std::max<uint64_t>(1, comm.maxMessageBytes / (sizeof(uint64_t) + rec));
+    if (to) to->release(), to->reserve(size_t(total));
+    for (uint64_t first = 0; first < total; first += window) {
+      std::vector<uint32_t> idx;
+      for (size_t p = 0; p < key.size(); ++p)
+        if (key[p] >= first && key[p] - first < window) idx.push_back(uint32_t(p));
+      std::vector<char> mine(idx.size() * sizeof(uint64_t));
+      for (size_t i = 0; i < idx.size(); ++i) std::memcpy(mine.data() + i * sizeof(uint64_t), &key[idx[i]], sizeof(uint64_t));
+      packParticles(g, idx, records);
+      mine.insert(mine.end(), records.begin(), records.end());
+      std::vector<size_t> counts;
+      const std::vector<char> all = comm.gather(mine, counts);
+      if (to) appendInIndexOrder(*to, all, counts, rec);
     }
-    std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<char> ordered(order.size() * rec);
-    for (size_t i = 0; i < order.size(); ++i) std::memcpy(ordered.data() + i * rec, order[i].second, rec);
-    to->release();
-    appendParticles(*to, ordered);
   }
   if (!view) return;
   // What the constructor computes from the particles, as one process computes it from all of them.

@@ -154,3 +154,37 @@ TEST(RankZero, BorrowsTheCpusOfTheRanksOnItsMachineForTheEndsFiles) {
   EXPECT_EQ(thrown, root);
   EXPECT_EQ(peerFailed, !root);
 }
+
+TEST(RankZero, StartsFromTheRanksSeededPartsInOneProcesssOrderWindowByWindow) {
+  // Each rank seeds its part; rank 0's view gets them all in the order one process seeds them,
+  // here in windows of 150 particles (a message at most), without loading the scene again.
+  SeedSlice part;
+  part.part = world->rank(), part.parts = world->size();
+  SceneSetup mine = loadSceneString(test::kSmallCollapse, "collapse.toml", {}, part);
+  const std::vector<std::vector<uint64_t>> index = mine.seedSlice.index;
+  Simulation sim(mine.settings, std::move(mine.groups));
+  const bool root = world->rank() == 0;
+  std::unique_ptr<Simulation> view = root ? sim.emptyView() : nullptr;
+  const size_t keep = world->maxMessageBytes;
+  world->maxMessageBytes = 150 * (8 + ParticleSet::bytesPerParticle() + sim.groups()[0]->stateBytesPerParticle());
+  sim.gatherSeededInto(*world, view.get(), &index);
+  world->maxMessageBytes = keep;
+  if (!root) return;
+  SceneSetup whole = loadSceneString(test::kSmallCollapse, "collapse.toml", {});
+  const Simulation one(whole.settings, std::move(whole.groups));
+  const MaterialGroup& a = *one.groups()[0];
+  const MaterialGroup& b = *view->groups()[0];
+  ASSERT_EQ(b.size(), a.size());
+  EXPECT_GT(a.size(), 12000u);
+  EXPECT_EQ(b.particles.x.capacity(), a.size()) << "sized once for all of them";
+  std::vector<uint32_t> all(a.size());
+  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  std::vector<char> ra, rb;
+  packParticles(a, all, ra);
+  packParticles(b, all, rb);
+  EXPECT_TRUE(ra == rb) << "every particle's record, bit for bit, in one process's order";
+  EXPECT_EQ(view->initialMass(), one.initialMass());
+  EXPECT_EQ(view->maxSpeed(), one.maxSpeed());
+  EXPECT_EQ(std::string(b.modelName()), a.modelName());
+  EXPECT_EQ(b.waveSpeed(), a.waveSpeed()) << "the same material";
+}
