@@ -181,6 +181,32 @@ void DomainDecomposition::keepOwn(const std::vector<MaterialGroup*>& groups, Rea
   }
 }
 
+void packKeyed(const MaterialGroup& g, const std::vector<uint32_t>& idx, const std::vector<uint64_t>& keys,
+               std::vector<char>& out) {
+  std::vector<char> records;
+  packParticles(g, idx, records);
+  out.resize(idx.size() * sizeof(uint64_t));
+  for (size_t i = 0; i < idx.size(); ++i) std::memcpy(out.data() + i * sizeof(uint64_t), &keys[idx[i]], sizeof(uint64_t));
+  out.insert(out.end(), records.begin(), records.end());
+}
+
+void appendInKeyOrder(MaterialGroup& g, const std::vector<std::string_view>& parts) {
+  const size_t rec = recordBytes(g);
+  std::vector<std::pair<uint64_t, const char*>> all;
+  for (std::string_view part : parts) {
+    const size_t count = part.size() / (sizeof(uint64_t) + rec);
+    for (size_t i = 0; i < count; ++i) {
+      uint64_t k;
+      std::memcpy(&k, part.data() + i * sizeof(uint64_t), sizeof k);
+      all.push_back({k, part.data() + count * sizeof(uint64_t) + i * rec});
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<char> ordered(all.size() * rec);
+  for (size_t i = 0; i < all.size(); ++i) std::memcpy(ordered.data() + i * rec, all[i].second, rec);
+  appendParticles(g, ordered);
+}
+
 void DomainDecomposition::scatterSeeded(const std::vector<MaterialGroup*>& groups, Real dx,
                                         const std::vector<std::vector<uint64_t>>& index) {
   const int n = comm_->size(), me = comm_->rank();
@@ -191,37 +217,17 @@ void DomainDecomposition::scatterSeeded(const std::vector<MaterialGroup*>& group
     if (key.size() != g->size()) throw std::logic_error("scatterSeeded: one index per particle");
     std::vector<std::vector<uint32_t>> to(static_cast<size_t>(n));
     for (size_t p = 0; p < g->size(); ++p) to[size_t(owner(owningBlock(g->particles.x[p], invDx)))].push_back(uint32_t(p));
-    // Per destination: the indices, then the records.
     std::vector<std::vector<char>> send(static_cast<size_t>(n));
-    for (int r = 0; r < n; ++r) {
-      const auto& idx = to[size_t(r)];
-      std::vector<char> records;
-      packParticles(*g, idx, records);
-      auto& out = send[size_t(r)];
-      out.resize(idx.size() * sizeof(uint64_t));
-      for (size_t i = 0; i < idx.size(); ++i) std::memcpy(out.data() + i * sizeof(uint64_t), &key[idx[i]], sizeof(uint64_t));
-      out.insert(out.end(), records.begin(), records.end());
-    }
+    for (int r = 0; r < n; ++r) packKeyed(*g, to[size_t(r)], key, send[size_t(r)]);
     std::vector<char> own = std::move(send[size_t(me)]);
     send[size_t(me)].clear();
     std::vector<std::vector<char>> recv = comm_->exchange(send);
     recv[size_t(me)] = std::move(own);
-    const size_t rec = recordBytes(*g);
-    std::vector<std::pair<uint64_t, const char*>> all;
-    for (const auto& buf : recv) {
-      const size_t count = buf.size() / (sizeof(uint64_t) + rec);
-      for (size_t i = 0; i < count; ++i) {
-        uint64_t k;
-        std::memcpy(&k, buf.data() + i * sizeof(uint64_t), sizeof k);
-        all.push_back({k, buf.data() + count * sizeof(uint64_t) + i * rec});
-      }
-    }
-    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<char> ordered(all.size() * rec);
-    for (size_t i = 0; i < all.size(); ++i) std::memcpy(ordered.data() + i * rec, all[i].second, rec);
+    std::vector<std::string_view> parts;
+    for (const auto& buf : recv) parts.emplace_back(buf.data(), buf.size());
     g->particles.resize(0);
     g->resizeState(0);
-    appendParticles(*g, ordered);
+    appendInKeyOrder(*g, parts);
   }
 }
 

@@ -42,6 +42,12 @@ void appendParticles(MaterialGroup& g, std::string_view in);
 inline void appendParticles(MaterialGroup& g, const std::vector<char>& in) {
   appendParticles(g, std::string_view(in.data(), in.size()));
 }
+/// Particles idx of g, each with its key keys[idx[i]] (its index in one process's arrays): the
+/// keys, then the records. And such parts, from any ranks, appended to g in the order of their keys
+/// (DomainDecomposition::scatterSeeded, Simulation::gatherSeededInto).
+void packKeyed(const MaterialGroup& g, const std::vector<uint32_t>& idx, const std::vector<uint64_t>& keys,
+               std::vector<char>& out);
+void appendInKeyOrder(MaterialGroup& g, const std::vector<std::string_view>& parts);
 
 class DomainDecomposition {
 public:

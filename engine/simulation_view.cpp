@@ -17,37 +17,15 @@ std::unique_ptr<Simulation> Simulation::emptyView() const {
   return view;
 }
 
-namespace {
-/// Rank 0: the records of one window of one process's indices, from every rank (each as its
-/// indices, then its records), appended to `to` in index order.
-void appendInIndexOrder(MaterialGroup& to, const std::vector<char>& all, const std::vector<size_t>& counts, size_t rec) {
-  std::vector<std::pair<uint64_t, const char*>> order;
-  size_t at = 0;
-  for (size_t c : counts) {
-    const size_t n = c / (sizeof(uint64_t) + rec);
-    for (size_t i = 0; i < n; ++i) {
-      uint64_t k;
-      std::memcpy(&k, all.data() + at + i * sizeof(uint64_t), sizeof k);
-      order.push_back({k, all.data() + at + n * sizeof(uint64_t) + i * rec});
-    }
-    at += c;
-  }
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<char> ordered(order.size() * rec);
-  for (size_t i = 0; i < order.size(); ++i) std::memcpy(ordered.data() + i * rec, order[i].second, rec);
-  appendParticles(to, ordered);
-}
-} // namespace
-
 void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
                                   const std::vector<std::vector<uint64_t>>* seedIndex) const {
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherSeededInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
     const MaterialGroup& g = *groupPtrs_[gi];
     MaterialGroup* to = view ? view->groupPtrs_[gi] : nullptr;
-    std::vector<char> records;
     if (!seedIndex) { // every rank holds every particle
       if (!to) continue;
+      std::vector<char> records;
       std::vector<uint32_t> idx(g.size());
       std::iota(idx.begin(), idx.end(), 0u);
       packParticles(g, idx, records);
@@ -69,13 +47,14 @@ void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
       std::vector<uint32_t> idx;
       for (size_t p = 0; p < key.size(); ++p)
         if (key[p] >= first && key[p] - first < window) idx.push_back(uint32_t(p));
-      std::vector<char> mine(idx.size() * sizeof(uint64_t));
-      for (size_t i = 0; i < idx.size(); ++i) std::memcpy(mine.data() + i * sizeof(uint64_t), &key[idx[i]], sizeof(uint64_t));
-      packParticles(g, idx, records);
-      mine.insert(mine.end(), records.begin(), records.end());
+      std::vector<char> mine;
+      packKeyed(g, idx, key, mine);
       std::vector<size_t> counts;
       const std::vector<char> all = comm.gather(mine, counts);
-      if (to) appendInIndexOrder(*to, all, counts, rec);
+      if (!to) continue;
+      std::vector<std::string_view> parts;
+      for (size_t at = 0, r = 0; r < counts.size(); at += counts[r++]) parts.emplace_back(all.data() + at, counts[r]);
+      appendInKeyOrder(*to, parts);
     }
   }
   if (!view) return;
