@@ -13,8 +13,10 @@ namespace {
 
 /// m (ΔJ - 1) and m of particles [begin, end) into the padded two-channel buffer `sums`; their C
 /// is gathered as G2P gathers it (gatherChunkVelocities), 16 particles at a time.
-void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const Vec4* nodes, const int origin[3],
-                         Real dt, Real invDx, float* sums) {
+/// `state`: J - 1 per particle before the step when the group averages its J (then the sum is of
+/// its J after the step, cut at 1 + stateMax as the group's own update cuts it), or null.
+void scatterVolumeChange(const ParticleSet& P, const float* state, double stateMax, size_t begin, size_t end,
+                         const Vec4* nodes, const int origin[3], Real dt, Real invDx, float* sums) {
   QuadraticStencil st[kGatherChunk];
   Vec3 vel[kGatherChunk];
   Mat3 C[kGatherChunk];
@@ -26,13 +28,14 @@ void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const V
       const size_t p = first + size_t(c);
       const QuadraticStencil& s = st[c];
       const int l0 = s.base[0] - origin[0], l1 = s.base[1] - origin[1], l2 = s.base[2] - origin[2];
-      const Real change = Real(volumeChangeMinusOne(double(dt) * C[c].cast<double>()));
+      double change = volumeChangeMinusOne(double(dt) * C[c].cast<double>());
+      if (state) change = std::min(stateMax, change + double(state[p]) * (1 + change));
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
           float* row = sums + 2 * size_t(padIndex(l0 + i, l1 + j, l2));
           for (int k = 0; k < 3; ++k) {
             const Real w = s.w[0][i] * s.w[1][j] * s.w[2][k] * P.mass[p];
-            row[2 * k] += float(w * change);
+            row[2 * k] += float(w * Real(change));
             row[2 * k + 1] += float(w);
           }
         }
@@ -43,14 +46,15 @@ void scatterVolumeChange(const ParticleSet& P, size_t begin, size_t end, const V
 } // namespace
 
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt) {
-  const size_t C = size_t(grid.channels.count), ch = size_t(grid.channels.fbar);
+  const size_t C = size_t(grid.channels.count);
+  const int pairs[2] = {grid.channels.fbar, grid.channels.stateJ};
   const Real invDx = Real(1) / grid.dx;
   for (int colour = 0; colour < 8; ++colour) {
     const auto& blocks = grid.colours[size_t(colour)];
     // Blocks of one colour never reach the same node; they read velocities and write only the channels.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const auto& r) {
       std::vector<Vec4> nodes(kPadNodes);
-      std::vector<float> sums(2 * size_t(kPadNodes));
+      std::vector<float> sums(4 * size_t(kPadNodes)); // per channel pair
       for (size_t c = r.begin(); c != r.end(); ++c) {
         const uint32_t b = blocks[c];
         const auto& up = grid.topology.upper(b);
@@ -60,25 +64,38 @@ void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& 
         const int origin[3] = {bc.x * kBlockDim, bc.y * kBlockDim, bc.z * kBlockDim};
         for (const MaterialGroup* g : groups) {
           const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
-          if (begin != end && g->averagesVolume())
-            scatterVolumeChange(g->particles, begin, end, nodes.data(), origin, dt, invDx, sums.data());
+          const int pair = g->averagesState() ? 1 : g->averagesVolume() && pairs[0] >= 0 ? 0 : -1;
+          if (begin != end && pair >= 0)
+            scatterVolumeChange(g->particles, pair ? g->averagedState() : nullptr, g->averagedStateMax(), begin, end,
+                                nodes.data(), origin, dt, invDx, sums.data() + size_t(pair) * 2 * size_t(kPadNodes));
         }
-        forEachPaddedRow([&](int d, int pad, int node, int n) {
-          float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
-          const float* in = sums.data() + 2 * size_t(pad);
-          for (int k = 0; k < n; ++k, out += C, in += 2) out[0] += in[0], out[1] += in[1];
-        });
+        for (int pair = 0; pair < 2; ++pair) {
+          if (pairs[pair] < 0) continue;
+          forEachPaddedRow([&](int d, int pad, int node, int n) {
+            float* out = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + size_t(pairs[pair]);
+            const float* in = sums.data() + size_t(pair) * 2 * size_t(kPadNodes) + 2 * size_t(pad);
+            for (int k = 0; k < n; ++k, out += C, in += 2) out[0] += in[0], out[1] += in[1];
+          });
+        }
       }
     });
   }
 }
 
-void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out, const PadBox& box) {
-  const size_t C = size_t(grid.channels.count), ch = size_t(grid.channels.fbar);
+void copyMeanVolumeChange(const SparseGrid& grid, int channel, const std::array<int32_t, 8>& up, Real* out,
+                          const PadBox& box) {
+  const size_t C = size_t(grid.channels.count), ch = size_t(channel);
   forEachPaddedRow(box, [&](int d, int pad, int node, int n) {
     const float* in = grid.blockExtra(uint32_t(up[d])) + size_t(node) * C + ch;
     for (int k = 0; k < n; ++k, in += C) out[pad + k] = in[1] > 0.f ? Real(in[0] / in[1]) : Real(0);
   });
+}
+
+double averagedScale(const Mat3& C, Real dt, double mean, double own) {
+  const double inc = volumeChangeMinusOne(double(dt) * C.cast<double>());
+  const double J = (1 + own) * (1 + inc);
+  if (!(J > 0) || !(mean > -1)) return 1;
+  return std::exp((std::log1p(mean) - std::log(J)) / 3);
 }
 
 } // namespace talus

@@ -14,13 +14,22 @@
 
 namespace talus {
 
-/// Scatters, for the particles of every group that averagesVolume(), m (ΔJ - 1) and m into the
-/// two extra channels from grid.channels.fbar, ΔJ = det(I + dt C) with C gathered from the updated
-/// grid velocities. Colour by colour, per-block buffers: the same sums at any thread count.
+/// Scatters, for the particles of every group that averagesVolume() (when grid.channels.fbar is
+/// set), m (ΔJ - 1) and m into the two channels from grid.channels.fbar, ΔJ = det(I + dt C) with
+/// C gathered from the updated grid velocities; and for every group that averagesState(), m (J ΔJ
+/// - 1) and m, its J after the step (tension cut at J <= 1), into those from grid.channels.stateJ.
+/// Colour by colour, per-block buffers: the same sums at any thread count.
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
 
-/// The mean ΔJ - 1 of the padded neighbourhood of a block (`up`: it and its 7 upper neighbours),
-/// 0 where no solid reached a node, in padIndex order (G2PBlock::meanVolumeChange), inside `box`.
-void copyMeanVolumeChange(const SparseGrid& grid, const std::array<int32_t, 8>& up, Real* out, const PadBox& box);
+/// The mean of channel pair `channel` (grid.channels.fbar: ΔJ - 1; stateJ: J - 1) over the padded
+/// neighbourhood of a block (`up`: it and its 7 upper neighbours), 0 where no particle reached a
+/// node, in padIndex order (G2PBlock::meanVolumeChange), inside `box`.
+void copyMeanVolumeChange(const SparseGrid& grid, int channel, const std::array<int32_t, 8>& up, Real* out,
+                          const PadBox& box);
+
+/// The F-bar scale of a particle's increment I + dt C under the mean `mean` gathered from one of
+/// the two channel pairs: for a group that averagesState() the mean is its new J - 1 and `own`
+/// its J - 1 before the step, so that det(scale (I + dt C)) (1 + own) = 1 + mean.
+double averagedScale(const Mat3& C, Real dt, double mean, double own);
 
 } // namespace talus

@@ -30,6 +30,9 @@ struct G2PBlock {
   /// F-bar: the step's mass-weighted mean of the solids' volume change minus one, ΔJ̄ - 1, at the
   /// same nodes; null when F-bar is off.
   const Real* meanVolumeChange = nullptr;
+  /// For a group that averagesState(): the mass-weighted mean of its J - 1 after the step at the
+  /// same nodes (GatheredChunk::meanJ); else null.
+  const Real* meanJ = nullptr;
 };
 
 /// Per-thread results of a G2P pass.
@@ -78,6 +81,14 @@ public:
   virtual void initialize(const Vec3d& gravity, double dx) {}
   /// Whether F-bar (SimulationSettings::fbar) averages this material's volume change (solids).
   virtual bool averagesVolume() const { return false; }
+  /// Whether this material's J itself (not its step's increment) is replaced every step by the
+  /// grid's mass-weighted mean around each particle (water's `smooth_pressure`); then
+  /// averagedState() is J - 1 per particle, in particle order.
+  virtual bool averagesState() const { return false; }
+  virtual const float* averagedState() const { return nullptr; }
+  /// The largest J - 1 the group's own update keeps (its tension cut): the average takes each
+  /// particle's J after the step cut there, as the particle would hold it.
+  virtual double averagedStateMax() const { return 0; }
   /// Gather velocities for particles [begin, end), update deformation, stress and position.
   virtual void gridToParticles(const G2PBlock& block, size_t begin, size_t end, G2PStats& stats) = 0;
 

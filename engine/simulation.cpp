@@ -45,6 +45,8 @@ Simulation::Simulation(SimulationSettings settings, std::vector<std::unique_ptr<
     }
   if (settings_.fbar && periodic_.any())
     throw std::invalid_argument("[simulation] fbar does not work with periodic axes yet");
+  if (periodic_.any() && std::any_of(groupPtrs_.begin(), groupPtrs_.end(), [](const MaterialGroup* g) { return g->averagesState(); }))
+    throw std::invalid_argument("a water's smooth_pressure does not work with periodic axes yet");
   if (!settings_.covers.empty()) {
     if (periodic_.any()) throw std::invalid_argument("erodible covers do not work with periodic axes yet");
     for (const ErodibleCover& c : settings_.covers)
@@ -124,6 +126,11 @@ void Simulation::buildColliders() {
     grid_.channels.fbar = channels;
     channels += 2;
   }
+  // A water's smooth_pressure: its J averaged over the grid, in channels of its own.
+  if (std::any_of(groupPtrs_.begin(), groupPtrs_.end(), [](const MaterialGroup* g) { return g->averagesState(); })) {
+    grid_.channels.stateJ = channels;
+    channels += 2;
+  }
   grid_.channels.count = channels;
   if (!channels) grid_.channels.scatterOf.clear();
 }
@@ -171,7 +178,7 @@ double Simulation::stepBy(double dt) {
     ScopedTimer t(times_.halo);
     phases_->reduceLoads(rdt);
   }
-  if (grid_.channels.fbar >= 0) {
+  if (grid_.channels.fbar >= 0 || grid_.channels.stateJ >= 0) {
     ScopedTimer t(times_.g2p);
     averageVolumeChange(groupPtrs_, grid_, rdt);
   }

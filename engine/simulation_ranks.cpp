@@ -84,6 +84,8 @@ void Simulation::distribute(std::shared_ptr<Communicator> comm, double imbalance
                             const std::vector<std::vector<uint64_t>>* seedIndex) {
   if (periodic_.any()) throw std::invalid_argument("periodic axes do not run on several ranks yet (run without mpirun)");
   if (settings_.fbar) throw std::invalid_argument("[simulation] fbar does not run on several ranks yet (run without mpirun)");
+  if (grid_.channels.stateJ >= 0)
+    throw std::invalid_argument("a water's smooth_pressure does not run on several ranks yet (run without mpirun)");
   if (!settings_.sources.empty())
     throw std::invalid_argument("secondary releases, inflows and forests' detrainment do not run on several ranks yet (run without mpirun, "
                                 "or set detrainment = 0 in the resistance regions)");

@@ -17,6 +17,8 @@ struct ExtraChannels {
   int momentum = -1;   ///< 3: every particle's APIC momentum without the stress term (AFLIP's
                        ///< grid velocity before forces)
   int fbar = -1;       ///< 2: F-bar's m (dJ - 1) and m, filled between the grid update and G2P
+  int stateJ = -1;     ///< 2: the same for m (J - 1) and m of the materials that average their J
+                       ///< (MaterialGroup::averagesState), apart: a state and an increment do not mix
   /// Per group: the (channel, factor) pairs P2G adds factor * particle mass to (1/rho into
   /// `thickness`, 1 into the node mass of a material with its own basal law, MaterialLaw::channel).
   std::vector<std::vector<std::pair<int, float>>> scatterOf;

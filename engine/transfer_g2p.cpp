@@ -68,7 +68,7 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
   const bool aflip = flip > Real(0) && grid.channels.momentum >= 0;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, grid.owning.size(), 1), [&](const auto& r) {
     std::vector<Vec4> buf(kPadNodes), old(aflip ? kPadNodes : 0);
-    std::vector<Real> meanChange(grid.channels.fbar >= 0 ? kPadNodes : 0);
+    std::vector<Real> meanChange(grid.channels.fbar >= 0 ? kPadNodes : 0), meanJ(grid.channels.stateJ >= 0 ? kPadNodes : 0);
     G2PStats& st = stats.local();
     for (size_t o = r.begin(); o != r.end(); ++o) {
       const uint32_t b = grid.owning[o];
@@ -85,13 +85,14 @@ G2PStats gridToParticles(const std::vector<MaterialGroup*>& groups, const Sparse
         blk.old = old.data();
         blk.flip = flip;
       }
-      if (grid.channels.fbar >= 0) {
-        copyMeanVolumeChange(grid, up, meanChange.data(), box);
-        blk.meanVolumeChange = meanChange.data();
-      }
+      if (grid.channels.fbar >= 0) copyMeanVolumeChange(grid, grid.channels.fbar, up, meanChange.data(), box);
+      if (grid.channels.stateJ >= 0) copyMeanVolumeChange(grid, grid.channels.stateJ, up, meanJ.data(), box);
       for (MaterialGroup* g : groups) {
         const size_t begin = g->blockStart[b], end = g->blockStart[b + 1];
-        if (begin != end) g->gridToParticles(blk, begin, end, st);
+        if (begin == end) continue;
+        blk.meanVolumeChange = g->averagesVolume() && !meanChange.empty() ? meanChange.data() : nullptr;
+        blk.meanJ = g->averagesState() ? meanJ.data() : nullptr;
+        g->gridToParticles(blk, begin, end, st);
       }
     }
   });

@@ -89,6 +89,7 @@ struct GatheredChunk {
   size_t first = 0;
   int count = 0;
   double fbar[kGatherChunk];
+  double meanJ[kGatherChunk]; ///< G2PBlock::meanJ at each particle (0 when that is null)
 };
 
 /// Gathers v and C for particles [begin, end) chunk by chunk, lets `update(chunk)` advance the
@@ -116,6 +117,7 @@ inline void gatherParticleChunks(const G2PBlock& blk, ParticleSet& P, size_t beg
       else P.v[p] = vel[k];
       P.C[p] = C[k];
       chunk.fbar[k] = blk.meanVolumeChange ? fbarScale(C[k], dt, double(gatherScalar(blk.meanVolumeChange + pad, s))) : 1.0;
+      chunk.meanJ[k] = blk.meanJ ? double(gatherScalar(blk.meanJ + pad, s)) : 0.0;
     }
     update(static_cast<const GatheredChunk&>(chunk));
     for (int k = 0; k < chunk.count; ++k) {

@@ -1,6 +1,7 @@
 // Material group for the weakly compressible fluid: stores J = det F per particle, nothing else.
 #pragma once
 
+#include "engine/fbar.h"
 #include "engine/material_group.h"
 #include "engine/transfer_g2p.h"
 #include "materials/tait_water.h"
@@ -21,6 +22,9 @@ public:
   std::vector<float> dJ; ///< J - 1 per particle
 
   const char* modelName() const override { return TaitWaterModel::kName; }
+  bool averagesState() const override { return model.smoothPressure; }
+  const float* averagedState() const override { return dJ.data(); }
+  double averagedStateMax() const override { return model.maxTension > 0 ? model.maxJ() - 1 : 0.0; }
   std::unique_ptr<MaterialGroup> emptyCopy() const override {
     auto g = std::make_unique<FluidGroup>(name(), index(), density(), model);
     g->hydrostatic = hydrostatic;
@@ -43,8 +47,12 @@ public:
       for (int k = 0; k < kWaterLanes; ++k) {
         const bool live = k < c.count;
         const Mat3& C = particles.C[c.first + size_t(live ? k : 0)];
-        for (int r = 0; r < 9; ++r) io.C[r][k] = live ? double(C(r / 3, r % 3)) : 0.0;
         io.dJ[k] = live ? double(dJ[c.first + size_t(k)]) : 0.0;
+        // smooth_pressure: the increment scaled so that J lands on the grid's mean (engine/fbar.h).
+        const double s = live && model.smoothPressure ? averagedScale(C, Real(dt), c.meanJ[k], io.dJ[k]) : 1.0;
+        for (int r = 0; r < 9; ++r) io.C[r][k] = live ? double(C(r / 3, r % 3)) : 0.0;
+        if (s != 1.0)
+          for (int r = 0; r < 9; ++r) io.C[r][k] = s * io.C[r][k] + (r % 4 == 0 ? (s - 1) / dt : 0.0);
       }
       updateWaterLanes(model, dt, c.count, io);
       for (int k = 0; k < c.count; ++k) {

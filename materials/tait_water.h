@@ -24,6 +24,11 @@ struct TaitWaterModel {
   double exponent = 7;    ///< k
   double viscosity = 0;   ///< eta (Pa s), Newtonian
   double maxTension = 0;  ///< largest tension (Pa) the water may carry; 0 = none
+  /// Each step, a particle's J becomes the grid's mass-weighted mean of its neighbours' J (the
+  /// `smooth_pressure` key): the two particle layers of a cell otherwise drift to pressures 2-10
+  /// times apart, a mode the grid does not see (docs/convergence.md, "What the particles next to
+  /// the wall carry").
+  bool smoothPressure = false;
 
   double pressure(double J) const { return pressureOfStrain(J - 1); }
   /// p of the volumetric strain dJ = J - 1, without cancellation near dJ = 0.

@@ -117,13 +117,7 @@ TEST(Fbar, OneAndTwoThreadsGiveBitIdenticalParticles) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     auto sim = test::makeSimulation(test::kSmallCollapse, {"simulation.fbar=true"});
     for (int s = 0; s < 60; ++s) sim->step();
-    std::vector<char> bytes;
-    for (const auto* g : sim->groups())
-      for (const auto& v : {g->particles.x, g->particles.v}) {
-        const char* p = reinterpret_cast<const char*>(v.data());
-        bytes.insert(bytes.end(), p, p + v.size() * sizeof(v[0]));
-      }
-    return bytes;
+    return test::particleBytes(*sim);
   };
   EXPECT_EQ(run(1), run(2));
 }

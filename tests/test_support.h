@@ -20,6 +20,17 @@ inline std::unique_ptr<Simulation> makeSimulation(const std::string& toml,
 }
 
 inline Vec3d centreOfMass(const Simulation& sim) { return sim.centreOfMass(); }
+
+/// Every group's positions and velocities as bytes: equal bytes, bit-identical particles.
+inline std::vector<char> particleBytes(const Simulation& sim) {
+  std::vector<char> bytes;
+  for (const auto* g : sim.groups())
+    for (const auto& v : {g->particles.x, g->particles.v}) {
+      const char* p = reinterpret_cast<const char*>(v.data());
+      bytes.insert(bytes.end(), p, p + v.size() * sizeof(v[0]));
+    }
+  return bytes;
+}
 inline Vec3d meanVelocity(const Simulation& sim) { return sim.meanVelocity(); }
 
 /// ../shared next to the project, or empty when absent (tests then skip).

@@ -125,6 +125,7 @@ std::unique_ptr<MaterialGroup> buildWater(const MaterialReader& r, const GroupHe
   }
   m.viscosity = r.nonNegative("viscosity", 0.0);
   m.maxTension = r.get("max_tension", 0.0, 0, m.bulk, false, true);
+  m.smoothPressure = t.boolean("smooth_pressure", false);
   auto g = std::make_unique<FluidGroup>(h.name, h.index, h.density, m);
   g->hydrostatic = t.boolean("hydrostatic", true);
   return g;
