@@ -17,7 +17,7 @@ namespace talus {
 /// Scatters, for the particles of every group that averagesVolume() (when grid.channels.fbar is
 /// set), m (ΔJ - 1) and m into the two channels from grid.channels.fbar, ΔJ = det(I + dt C) with
 /// C gathered from the updated grid velocities; and for every group that averagesState(), m (J ΔJ
-/// - 1) and m, its J after the step (tension cut at J <= 1), into those from grid.channels.stateJ.
+/// - 1) and m, its J after the step (cut at 1 + averagedStateMax()), into those from grid.channels.stateJ.
 /// Colour by colour, per-block buffers: the same sums at any thread count.
 void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& grid, Real dt);
 

@@ -20,6 +20,7 @@ inline std::unique_ptr<Simulation> makeSimulation(const std::string& toml,
 }
 
 inline Vec3d centreOfMass(const Simulation& sim) { return sim.centreOfMass(); }
+inline Vec3d meanVelocity(const Simulation& sim) { return sim.meanVelocity(); }
 
 /// Every group's positions and velocities as bytes: equal bytes, bit-identical particles.
 inline std::vector<char> particleBytes(const Simulation& sim) {
@@ -31,7 +32,6 @@ inline std::vector<char> particleBytes(const Simulation& sim) {
     }
   return bytes;
 }
-inline Vec3d meanVelocity(const Simulation& sim) { return sim.meanVelocity(); }
 
 /// ../shared next to the project, or empty when absent (tests then skip).
 inline std::string sharedDir() {
