@@ -61,11 +61,13 @@ sanitized_checks() {
   # sanitizers; skipping them keeps CI inside its budget (the loads on colliders, calibration,
   # detrainment and the two slowest hard cases were 10 of the sanitized suite's 28 test-minutes:
   # their kernels run under the sanitizers in the shorter tests of the same classes).
+  # The water's smooth_pressure splash test took 207 s under the sanitizers (31 s in Release); its
+  # pass runs under them in TaitWater.SmoothPressureIsBitIdenticalAtOneAndTwoThreads (24 s).
   # Two write-fault tests check the system's cause in the message (ENOSPC, EFBIG): in the clang/ASan build HDF5's error stack does not carry
   # it ("HDF5 call failed"), so they run in the Release suite only (not yet understood).
   ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$san" --output-on-failure -j "$jobs" --timeout 1200 \
-    -E "Ranks|ColumnCollapse|Heap\.|DamBreak|ImpulseWave|WaterSurfaceMap\.ADam|WaterColumn|SnowSlab|Determinism|BasalLaws|Rheology|MuI\.Steady|DiskFull\.ARunFillingATmpfs|WriteFaults\.AFileSizeLimit|ColliderLoads\.(WallPanels|APanels|AWallPanelOnAJet)|Calibration\.Recovers|Detrainment\.A(Slow|Fast)|HardCases\.(StiffRock|RockBlockHitsWater)"
+    -E "Ranks|ColumnCollapse|Heap\.|DamBreak|ImpulseWave|WaterSurfaceMap\.ADam|WaterColumn|SnowSlab|Determinism|BasalLaws|Rheology|MuI\.Steady|DiskFull\.ARunFillingATmpfs|WriteFaults\.AFileSizeLimit|ColliderLoads\.(WallPanels|APanels|AWallPanelOnAJet)|Calibration\.Recovers|Detrainment\.A(Slow|Fast)|HardCases\.(StiffRock|RockBlockHitsWater)|TaitWater\.SmoothPressureKeeps"
   # Each reader of user files is fuzzed from its committed seed corpus (tests/fuzz/seeds/<target>/)
   # in a scratch copy: the scene reader for TALUS_FUZZ_SECONDS (90), the others for
   # TALUS_FUZZ_FILE_SECONDS (25) each.
