@@ -91,11 +91,4 @@ void copyMeanVolumeChange(const SparseGrid& grid, int channel, const std::array<
   });
 }
 
-double averagedScale(const Mat3& C, Real dt, double mean, double own) {
-  const double inc = volumeChangeMinusOne(double(dt) * C.cast<double>());
-  const double J = (1 + own) * (1 + inc);
-  if (!(J > 0) || !(mean > -1)) return 1;
-  return std::exp((std::log1p(mean) - std::log(J)) / 3);
-}
-
 } // namespace talus

@@ -27,9 +27,4 @@ void averageVolumeChange(const std::vector<MaterialGroup*>& groups, SparseGrid& 
 void copyMeanVolumeChange(const SparseGrid& grid, int channel, const std::array<int32_t, 8>& up, Real* out,
                           const PadBox& box);
 
-/// The F-bar scale of a particle's increment I + dt C under the mean `mean` gathered from one of
-/// the two channel pairs: for a group that averagesState() the mean is its new J - 1 and `own`
-/// its J - 1 before the step, so that det(scale (I + dt C)) (1 + own) = 1 + mean.
-double averagedScale(const Mat3& C, Real dt, double mean, double own);
-
 } // namespace talus

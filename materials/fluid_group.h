@@ -1,7 +1,6 @@
 // Material group for the weakly compressible fluid: stores J = det F per particle, nothing else.
 #pragma once
 
-#include "engine/fbar.h"
 #include "engine/material_group.h"
 #include "engine/transfer_g2p.h"
 #include "materials/tait_water.h"
@@ -48,8 +47,9 @@ public:
         const bool live = k < c.count;
         const Mat3& C = particles.C[c.first + size_t(live ? k : 0)];
         io.dJ[k] = live ? double(dJ[c.first + size_t(k)]) : 0.0;
-        // smooth_pressure: the increment scaled so that J lands on the grid's mean (engine/fbar.h).
-        const double s = live && model.smoothPressure ? averagedScale(C, Real(dt), c.meanJ[k], io.dJ[k]) : 1.0;
+        // smooth_pressure: F-bar's scale of the increment to the mean J over this particle's J, so
+        // that J lands on the grid's mean (engine/fbar.h).
+        const double s = live && model.smoothPressure ? fbarScale(C, Real(dt), (1 + c.meanJ[k]) / (1 + io.dJ[k]) - 1) : 1.0;
         for (int r = 0; r < 9; ++r) io.C[r][k] = live ? double(C(r / 3, r % 3)) : 0.0;
         if (s != 1.0)
           for (int r = 0; r < 9; ++r) io.C[r][k] = s * io.C[r][k] + (r % 4 == 0 ? (s - 1) / dt : 0.0);
