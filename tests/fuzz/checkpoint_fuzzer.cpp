@@ -4,12 +4,19 @@
 // fuzzer seals the file first (a fresh header with the body's true length and CRC), as if Talus
 // had written the mutated body itself, so HDF5 and the state loading behind the checksum are
 // exercised too. Expected: a restored simulation or talus::InputError.
+//
+// With TALUS_FUZZ_SEALED=0 in the environment, mode-1 inputs are skipped: CI mutates only in
+// front of the checksum and replays the committed sealed seeds once (tools/setup.sh). Behind the
+// checksum the mutations reach HDF5 1.10's own metadata parser, whose faults on forged files
+// (a copy from NULL, an endless allocation) are not Talus's and need a forged checksum to reach
+// (docs/reliability.md); explore them by hand without the variable.
 #include "checkpoint_scene.h"
 #include "fuzz_support.h"
 #include "io/common/input_error.h"
 #include "io/run/checkpoint.h"
 #include "io/scene/scene.h"
 
+#include <cstdlib>
 #include <memory>
 #include <zlib.h>
 
@@ -40,6 +47,11 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
+  static const bool sealedMutations = [] {
+    const char* v = std::getenv("TALUS_FUZZ_SEALED");
+    return !(v && std::string(v) == "0");
+  }();
+  if ((data[0] & 1) && !sealedMutations) return 0;
   talus::SceneSetup scene = talus::loadSceneString(talus::fuzz::kCheckpointScene, "fuzz.toml");
   std::string file(reinterpret_cast<const char*>(data + 1), size - 1);
   if (data[0] & 1) file = sealed(file, scene.hash);
