@@ -203,7 +203,7 @@ void flushRemote(const RemoteRows& rows, SparseGrid& grid) {
   const char* extra = rows.extra;
   Vec4* block = grid.block(uint32_t(rows.target));
   float* blockExtra = C > 0 ? grid.blockExtra(uint32_t(rows.target)) : nullptr;
-  forEachPaddedRow([&](int d, int, int node, int n) {
+  forEachPaddedRow(rows.box, [&](int d, int, int node, int n) {
     if (d != rows.d) return;
     for (int k = 0; k < n; ++k, nodes += sizeof(Vec4)) {
       Vec4 v;
