@@ -21,9 +21,14 @@ BlockTopology::~BlockTopology() = default;
 
 void BlockTopology::rebuild(const std::vector<BlockCoord>& owning) {
   IndexTree& tree = impl_->tree;
-  tree.clear();
   {
+    // The last rebuild's blocks are switched off (value -1, the background) instead of clearing
+    // the tree: clear() frees its nodes, and allocating and zeroing them again every step (the
+    // top internal node alone is 256 KB) cost about 1.4 ms a step whatever the scene's size
+    // (page faults in memset; 85 % of a 64-particle bar's step). The nodes kept are those the
+    // flow has ever touched: 4 bytes per block, and the iteration below visits active values only.
     openvdb::tree::ValueAccessor<IndexTree> acc(tree);
+    for (const BlockCoord& c : coords_) acc.setValueOff(openvdb::Coord(c.x, c.y, c.z), -1);
     for (const BlockCoord& c : owning)
       for (int d = 0; d < 8; ++d)
         acc.setValueOn(openvdb::Coord(c.x + (d >> 2), c.y + ((d >> 1) & 1), c.z + (d & 1)), 0);
