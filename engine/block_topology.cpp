@@ -24,9 +24,10 @@ void BlockTopology::rebuild(const std::vector<BlockCoord>& owning) {
   {
     // The last rebuild's blocks are switched off (value -1, the background) instead of clearing
     // the tree: clear() frees its nodes, and allocating and zeroing them again every step (the
-    // top internal node alone is 256 KB) cost about 1.4 ms a step whatever the scene's size
-    // (page faults in memset; 85 % of a 64-particle bar's step). The nodes kept are those the
-    // flow has ever touched: 4 bytes per block, and the iteration below visits active values only.
+    // top internal node alone is 256 KB) cost up to several ms a step whatever the scene's size
+    // (page faults in memset: a 64-particle bar 0.24 -> 0.015 s, docs/throughput.md). The nodes
+    // kept are those the flow has ever touched (4 bytes per block); the iteration below visits
+    // active values only, and the blocks switched off read -1 as before.
     openvdb::tree::ValueAccessor<IndexTree> acc(tree);
     for (const BlockCoord& c : coords_) acc.setValueOff(openvdb::Coord(c.x, c.y, c.z), -1);
     for (const BlockCoord& c : owning)
