@@ -67,6 +67,12 @@ TEST(Animation, FramesHoldTheFlowsVolumeAndTheFilmHasAPictureForEach) {
   std::ifstream summary(dir + "/run/summary.json");
   const std::string text((std::istreambuf_iterator<char>(summary)), {});
   EXPECT_NE(text.find("\"animation\": \"animation.mp4\""), std::string::npos);
+  // The run takes the colour scale's top from the frames it wrote (AnimationStyle::known);
+  // `talus animate` reads it from every frame again: the same films, byte for byte.
+  const std::string mp4 = test::slurp(dir + "/run/animation.mp4"), gif = test::slurp(dir + "/run/animation.gif");
+  ASSERT_EQ(test::shell("\"" + kBinary + "\" animate " + dir + "/run", log), 0) << log;
+  EXPECT_TRUE(test::slurp(dir + "/run/animation.mp4") == mp4);
+  EXPECT_TRUE(test::slurp(dir + "/run/animation.gif") == gif);
 }
 
 TEST(Animation, TalusAnimateRemakesTheFilmWithOtherChoicesAndNamesWhatIsWrong) {

@@ -54,7 +54,7 @@ Frame readFrame(const std::string& path) {
 }
 
 /// The part of a frame inside the world window (whole cells), or the frame itself.
-Frame crop(const Frame& f, const std::optional<std::array<double, 4>>& w) {
+Frame crop(Frame f, const std::optional<std::array<double, 4>>& w) {
   if (!w) return f;
   int c0 = 0, r0 = 0;
   Frame out = f;
@@ -190,7 +190,7 @@ void encodeFilms(const std::string& exe, const std::string& dir, const Animation
   IgnoreSigpipe quiet;
   Encoder enc[2];
   for (int k = 0; k < 2; ++k)
-    enc[k] = startEncoder(exe, first.width, first.height, style.fps, films[k].second,
+    enc[k] = startEncoder(exe, first.width(), first.height(), style.fps, films[k].second,
                           (fs::path(dir) / films[k].first).string(), log);
   constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
   for (size_t b = 0; b < n; b += kBatch) {
@@ -198,8 +198,7 @@ void encodeFilms(const std::string& exe, const std::string& dir, const Animation
     tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
     for (const MapImage& m : batch)
       for (Encoder& e : enc)
-        if (m.width == first.width && m.height == first.height)
-          feed(e, m.pixels.data(), m.pixels.size() * sizeof(uint32_t));
+        if (m.width() == first.width() && m.height() == first.height()) feed(e, m.pixels(), m.bytes());
   }
   bool ok[2];
   for (int k = 0; k < 2; ++k) ok[k] = finish(enc[k]);
@@ -254,16 +253,20 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
     frames.push_back((rasters / frameName(qs[size_t(qi)], i)).string());
   if (frames.empty())
     throw InputError(rasters.string(), std::string("no ") + qs[size_t(qi)] + " frames here: run the scene with [output] animation = true");
-  // The colour scale is the film's: the largest value of any frame unless given.
+  // The colour scale is the film's: the largest value of any frame unless given. The run that
+  // wrote the frames knows it; read again it is a pass over every frame.
   double top = style.scaleMax;
   if (!(top > 0)) {
     float m = 0;
-    for (const auto& f : frames)
-      for (float v : crop(readFrame(f), style.window).values)
-        if (v != kNoData && std::isfinite(v)) m = std::max(m, v);
+    if (style.known && style.known->frames == frames.size() && !style.window) m = style.known->largest[size_t(qi)];
+    else
+      for (const auto& f : frames)
+        for (float v : crop(readFrame(f), style.window).values)
+          if (v != kNoData && std::isfinite(v)) m = std::max(m, v);
     top = chart::niceCeil(m > 0 ? m : 1);
   }
-  const std::vector<float> ground = groundOn(dir, crop(readFrame(frames[0]), style.window).grid);
+  const RasterGrid shown = crop(readFrame(frames[0]), style.window).grid;
+  const std::vector<float> ground = groundOn(dir, shown);
   auto frame = [&](size_t i, QuicklookStyle& look) {
     Frame f = crop(readFrame(frames[i]), style.window);
     look.title = qi == 0 ? "Flow thickness (vertical)" : "Speed";
@@ -293,10 +296,12 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
     r.problem = "ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/";
     return r;
   }
+  const ShadedRelief relief{hillshade(shown, ground)}; // every frame is on the first's grid
   auto draw = [&](size_t i) {
     QuicklookStyle look;
     const Frame f = frame(i, look);
-    return drawMapQuicklook(f.grid, f.values, ground, look, kNoData);
+    if (f.grid.nx != shown.nx || f.grid.ny != shown.ny) return drawMapQuicklook(f.grid, f.values, ground, look, kNoData);
+    return drawMapQuicklook(f.grid, f.values, relief, look, kNoData);
   };
   encodeFilms(exe, dir, style, frames.size(), draw, r);
   return r;

@@ -35,6 +35,14 @@ struct AnimationStyle {
   int gifWidth = 480;
   /// World xmin, ymin, xmax, ymax to show; empty = the rasters' extent.
   std::optional<std::array<double, 4>> window;
+  /// What the run that wrote the frames knows of them: how many it wrote (from 0) and the largest
+  /// value of each quantity (animationQuantities' order). Used for the colour scale instead of
+  /// reading every frame first, when the folder holds exactly that many and no window is set.
+  struct Known {
+    size_t frames = 0;
+    std::array<float, 2> largest{};
+  };
+  std::optional<Known> known;
 };
 
 struct AnimationResult {

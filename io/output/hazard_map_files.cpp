@@ -164,6 +164,8 @@ void HazardMaps::makeFilm() {
   style.quantity = settings_.animation.quantity;
   style.fps = settings_.animation.fps;
   style.scaleMax = settings_.animation.scaleMax;
+  const Impl& m = *impl_;
+  if (m.filmKnown) style.known = AnimationStyle::Known{size_t(m.filmFrames), m.filmLargest};
   try {
     const AnimationResult r = makeAnimation(outDir_, style);
     for (const auto& f : r.files) recordFile(f);
@@ -253,6 +255,12 @@ void HazardMaps::writeFrame(double time) {
   Impl& m = *impl_;
   for (const auto& f : writeAnimationFrame(outDir_, m.animationNext, time, m.window, m.frameThickness, m.frameSpeed))
     recordFile(f);
+  m.filmKnown = m.filmKnown && m.animationNext == m.filmFrames;
+  ++m.filmFrames;
+  const std::vector<float>* frame[2] = {&m.frameThickness, &m.frameSpeed}; // animationQuantities' order
+  for (int q = 0; q < 2; ++q)
+    for (float v : *frame[q])
+      if (std::isfinite(v)) m.filmLargest[size_t(q)] = std::max(m.filmLargest[size_t(q)], v);
   // Steps longer than the interval skip frames rather than repeat one.
   m.animationNext = int(std::floor(time / settings_.animation.interval + 1e-9)) + 1;
   m.framePending = false;

@@ -2,6 +2,8 @@
 // (hazard_maps.cpp) and its files (hazard_map_files.cpp). Private to those two files.
 #pragma once
 
+#include <array>
+
 #include "io/output/hazard_maps.h"
 
 #include <limits>
@@ -52,6 +54,11 @@ struct HazardMaps::Impl {
   bool framePending = false; ///< this accumulation records a film frame (resultDue)
   bool frameDue = false;     ///< rank 0: the frame partDue found due, for its parts to the others
   std::vector<float> frameThickness, frameSpeed; ///< that frame's rasters while it is recorded
+  /// The film's frames this process wrote, numbered from 0 without a gap (else filmKnown is
+  /// false: a resumed run, a skipped frame), and their largest values, for the film's scale.
+  int filmFrames = 0;
+  bool filmKnown = true;
+  std::array<float, 2> filmLargest{};
   double endTime = 0;
   std::shared_ptr<const Sdf> terrain;
   Vec3d origin = Vec3d::Zero();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace talus {
 
@@ -54,11 +55,10 @@ std::string lengthLabel(double metres) {
 
 /// The quick-look's page (the caller destroys it).
 static cairo_surface_t* drawPage(const RasterGrid& grid, const std::vector<float>& values,
-                                 const std::vector<float>& heights, const QuicklookStyle& style, float nodata) {
+                                 const std::vector<float>& shade, const QuicklookStyle& style, float nodata) {
   // Reduce large rasters by blocks of f x f cells (maximum for values, mean for the hillshade).
   const int f = std::max(1, int(std::ceil(std::max(grid.nx, grid.ny) / 900.0)));
   const int w = (grid.nx + f - 1) / f, h = (grid.ny + f - 1) / f;
-  const std::vector<float> shade = hillshade(grid, heights);
   std::vector<float> val(size_t(w) * h, 0.f), sh(size_t(w) * h, std::numeric_limits<float>::quiet_NaN());
   std::vector<uint8_t> missing(size_t(w) * h, 1); // every cell of the block is no data
   float vmaxData = 0;
@@ -225,7 +225,7 @@ static cairo_surface_t* drawPage(const RasterGrid& grid, const std::vector<float
 
 void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const std::vector<float>& values,
                        const std::vector<float>& heights, const QuicklookStyle& style, float nodata) {
-  cairo_surface_t* page = drawPage(grid, values, heights, style, nodata);
+  cairo_surface_t* page = drawPage(grid, values, hillshade(grid, heights), style, nodata);
   try {
     chart::writePng(page, path);
   } catch (...) {
@@ -235,19 +235,24 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
   cairo_surface_destroy(page);
 }
 
+MapImage::MapImage(cairo_surface_t* page)
+    : page_(page, &cairo_surface_destroy), width_(cairo_image_surface_get_width(page)),
+      height_(cairo_image_surface_get_height(page)) {
+  // ARGB32 rows are whole words, so cairo pads none (its stride alignment is 4 bytes).
+  if (cairo_image_surface_get_stride(page) != 4 * width_) throw std::logic_error("MapImage: padded rows");
+  pixels_ = reinterpret_cast<const uint32_t*>(cairo_image_surface_get_data(page));
+}
+
 MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const std::vector<float>& heights,
                           const QuicklookStyle& style, float nodata) {
-  cairo_surface_t* page = drawPage(grid, values, heights, style, nodata);
+  return drawMapQuicklook(grid, values, ShadedRelief{hillshade(grid, heights)}, style, nodata);
+}
+
+MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const ShadedRelief& relief,
+                          const QuicklookStyle& style, float nodata) {
+  cairo_surface_t* page = drawPage(grid, values, relief.shade, style, nodata);
   cairo_surface_flush(page);
-  MapImage m;
-  m.width = cairo_image_surface_get_width(page), m.height = cairo_image_surface_get_height(page);
-  const int stride = cairo_image_surface_get_stride(page) / 4;
-  const auto* px = reinterpret_cast<const uint32_t*>(cairo_image_surface_get_data(page));
-  m.pixels.resize(size_t(m.width) * m.height);
-  for (int r = 0; r < m.height; ++r)
-    std::copy(px + size_t(r) * stride, px + size_t(r) * stride + m.width, m.pixels.begin() + size_t(r) * m.width);
-  cairo_surface_destroy(page);
-  return m;
+  return MapImage(page);
 }
 
 } // namespace talus

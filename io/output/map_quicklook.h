@@ -7,6 +7,7 @@
 #include "io/common/raster_grid.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,12 +33,31 @@ void writeMapQuicklook(const std::string& path, const RasterGrid& grid, const st
                        const std::vector<float>& heights, const QuicklookStyle& style, float nodata = -9999);
 
 /// The same picture in memory: width x height pixels, row by row without padding, each a
-/// native-endian 0xAARRGGBB word (cairo's ARGB32; opaque), i.e. bytes B, G, R, A on x86.
-struct MapImage {
-  int width = 0, height = 0;
-  std::vector<uint32_t> pixels;
+/// native-endian 0xAARRGGBB word (cairo's ARGB32; opaque), i.e. bytes B, G, R, A on x86. The
+/// pixels are the drawing's own (no copy: a film draws hundreds of them).
+class MapImage {
+public:
+  MapImage() = default;
+  explicit MapImage(cairo_surface_t* page); ///< takes the surface (ARGB32, flushed)
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const uint32_t* pixels() const { return pixels_; }
+  size_t bytes() const { return size_t(width_) * size_t(height_) * sizeof(uint32_t); }
+
+private:
+  std::shared_ptr<cairo_surface_t> page_;
+  const uint32_t* pixels_ = nullptr;
+  int width_ = 0, height_ = 0;
 };
 MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const std::vector<float>& heights,
+                          const QuicklookStyle& style, float nodata = -9999);
+
+/// The relief under many pictures of one grid (a film's frames), shaded once.
+struct ShadedRelief {
+  std::vector<float> shade; ///< hillshade(grid, heights), one value per cell of the grid
+};
+/// As above, over a relief already shaded for `grid`.
+MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const ShadedRelief& relief,
                           const QuicklookStyle& style, float nodata = -9999);
 
 /// Hillshade in [0, 1] (sun from the north-west, 45 degrees up) of `heights` on `grid`; NaN
