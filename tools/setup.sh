@@ -74,7 +74,11 @@ sanitized_checks() {
   # Each reader of user files is fuzzed from its committed seed corpus (tests/fuzz/seeds/<target>/)
   # in a scratch copy: the scene reader for TALUS_FUZZ_SECONDS (90), the others for
   # TALUS_FUZZ_FILE_SECONDS (25) each.
-  local target corpus seconds
+  local target corpus seconds sealed
+  # Allocations over 1 GB return NULL as malloc does on a real machine: a damaged size field
+  # inside HDF5's own metadata makes HDF5 ask for terabytes, and HDF5 fails cleanly on NULL (Talus
+  # refuses the file) where ASan's default would abort the run.
+  local asan=detect_leaks=0:allocator_may_return_null=1:max_allocation_size_mb=1024
   local -A runs=([scene]=350 [raster]=12000 [polygon]=11000 [level_set]=7800 [checkpoint]=4000)
   for target in scene raster polygon level_set checkpoint; do
     corpus="$(mktemp -d)"
@@ -88,11 +92,8 @@ sanitized_checks() {
     # A fixed seed and a cap on the number of inputs: every CI run replays the same mutations
     # whatever the machine's speed, so CI is reproducible (explore with other seeds and longer runs
     # by hand). The seed does not fix the sequence entirely (comparisons traced on addresses vary
-    # with ASLR). Allocations over 1 GB return NULL as malloc does on a real machine: a damaged
-    # size field inside HDF5's own metadata makes HDF5 ask for terabytes, and HDF5 fails cleanly
-    # on NULL (Talus refuses the file) where ASan's default would abort the run.
-    local asan=detect_leaks=0:allocator_may_return_null=1:max_allocation_size_mb=1024
-    local sealed=1
+    # with ASLR).
+    sealed=1
     if [ "$target" = checkpoint ]; then
       # The checkpoint's sealed seeds (a body behind a valid checksum) are replayed once; the
       # mutations stay in front of the checksum (TALUS_FUZZ_SEALED=0). Mutating behind it reached
