@@ -2,10 +2,9 @@
 // (hazard_maps.cpp) and its files (hazard_map_files.cpp). Private to those two files.
 #pragma once
 
-#include <array>
-
 #include "io/output/hazard_maps.h"
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
