@@ -296,12 +296,13 @@ AnimationResult makeAnimation(const std::string& dir, const AnimationStyle& styl
     r.problem = "ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/";
     return r;
   }
-  const ShadedRelief relief{hillshade(shown, ground)}; // every frame is on the first's grid
+  const ShadedRelief relief{hillshade(shown, ground)}, none; // the frames share the first's grid
   auto draw = [&](size_t i) {
     QuicklookStyle look;
     const Frame f = frame(i, look);
-    if (f.grid.nx != shown.nx || f.grid.ny != shown.ny) return drawMapQuicklook(f.grid, f.values, ground, look, kNoData);
-    return drawMapQuicklook(f.grid, f.values, relief, look, kNoData);
+    // A frame of another size gets no relief (the film skips it anyway, encodeFilms).
+    const bool same = f.grid.nx == shown.nx && f.grid.ny == shown.ny;
+    return drawMapQuicklook(f.grid, f.values, same ? relief : none, look, kNoData);
   };
   encodeFilms(exe, dir, style, frames.size(), draw, r);
   return r;

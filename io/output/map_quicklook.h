@@ -54,7 +54,7 @@ MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& valu
 
 /// The relief under many pictures of one grid (a film's frames), shaded once.
 struct ShadedRelief {
-  std::vector<float> shade; ///< hillshade(grid, heights), one value per cell of the grid
+  std::vector<float> shade; ///< hillshade(grid, heights), one value per cell of the grid; empty: no relief
 };
 /// As above, over a relief already shaded for `grid`.
 MapImage drawMapQuicklook(const RasterGrid& grid, const std::vector<float>& values, const ShadedRelief& relief,
