@@ -440,6 +440,11 @@ void Simulation::load(const StateArchive& a) {
   if (bed_) bed_->load(a);
   for (size_t i = 0; i < settings_.sources.size(); ++i) settings_.sources[i]->load(a, "source" + std::to_string(i) + "/");
   if (massRemoved_.size() != groupPtrs_.size()) throw std::runtime_error("mass ledger does not fit the materials");
+  checkParticles();
+  if (!(time_ >= 0) || !std::isfinite(time_)) throw std::runtime_error("the clock is not a finite time");
+}
+
+void Simulation::checkParticles() const {
   // A run only ever holds particles inside the domain (culling keeps them there) with positive
   // mass; binning a position far outside would overflow the block coordinates.
   const Vec3d lo = settings_.domain.min - Vec3d::Constant(settings_.dx), hi = settings_.domain.max + Vec3d::Constant(settings_.dx);
@@ -451,7 +456,6 @@ void Simulation::load(const StateArchive& a) {
         throw std::runtime_error("particle " + std::to_string(p) + " of '" + g->name() +
                                  "' lies outside the domain or has no mass");
     }
-  if (!(time_ >= 0) || !std::isfinite(time_)) throw std::runtime_error("the clock is not a finite time");
 }
 
 } // namespace talus

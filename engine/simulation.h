@@ -143,8 +143,21 @@ public:
   /// so outputs written from it are one process's files. Other ranks pass null. The per-step
   /// outputs never need it (they step in parts); frames, checkpoints and the end's files do.
   /// Rank 0 appends one rank's particles at a time into arrays sized for all: it holds the run
-  /// once (plus one rank's part in flight), not also in a gathered buffer.
-  void gatherInto(Simulation* view);
+  /// once (plus one rank's part in flight), not also in a gathered buffer. With
+  /// ViewContents::WithoutParticles the view gets all of that but the particles (its groups are
+  /// left empty): a checkpoint whose particles every rank writes itself (particleRecords).
+  enum class ViewContents { Everything, WithoutParticles };
+  void gatherInto(Simulation* view, ViewContents what = ViewContents::Everything);
+  /// This process's particles of group `group` as records (packParticles' layout), split where
+  /// one process's order splits them: `settled` (every rank's in rank order), then `fresh` (made
+  /// by the bed since binning, every rank's after all the settled ones). gatherInto's order.
+  void particleRecords(size_t group, std::vector<char>& settled, std::vector<char>& fresh) const;
+  /// Appends particleRecords' records to group `group` (a resumed checkpoint's parts, in one
+  /// process's order). Throws std::runtime_error when they are not whole records.
+  void appendParticleRecords(size_t group, std::string_view records);
+  /// Throws std::runtime_error naming the first particle outside the domain or without mass:
+  /// what load() checks, for particles appended after it.
+  void checkParticles() const;
   /// Every group empty, its memory returned (MaterialGroup::release): a view between the files
   /// written from it, so rank 0 holds every particle only while it writes (gatherInto refills it).
   void releaseParticles() {

@@ -65,7 +65,7 @@ void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
     for (const Vec3& v : g->particles.v) view->maxSpeed_ = std::max(view->maxSpeed_, double(v.norm()));
 }
 
-void Simulation::gatherInto(Simulation* view) {
+void Simulation::gatherInto(Simulation* view, ViewContents what) {
   Communicator& comm = ranks_->comm();
   if ((comm.rank() == 0) != (view != nullptr)) throw std::logic_error("gatherInto: rank 0 and only rank 0 passes a view");
   for (size_t gi = 0; gi < groupPtrs_.size(); ++gi) {
@@ -75,7 +75,7 @@ void Simulation::gatherInto(Simulation* view) {
     // The particles the bed made since binning come after every rank's others, as one process
     // has them: gathered as a second part when there is a bed.
     const size_t fresh = gi < fresh_.size() ? fresh_[gi] : 0;
-    const uint64_t made = bed_ ? comm.sumOf(uint64_t(fresh)) : 0;
+    const uint64_t made = bed_ && what == ViewContents::Everything ? comm.sumOf(uint64_t(fresh)) : 0;
     const size_t record = ParticleSet::bytesPerParticle() + g.stateBytesPerParticle();
     // Rank 0 appends one rank's particles at a time to arrays sized for all of them at once, so
     // it holds the whole run once, not a second time in a gathered buffer.
@@ -93,8 +93,10 @@ void Simulation::gatherInto(Simulation* view) {
           },
           [&](int, std::string_view part) { appendParticles(*to, part); });
     };
-    gatherRange(0, g.size() - fresh, made);
-    if (bed_) gatherRange(g.size() - fresh, g.size(), 0);
+    if (what == ViewContents::Everything) {
+      gatherRange(0, g.size() - fresh, made);
+      if (bed_) gatherRange(g.size() - fresh, g.size(), 0);
+    }
     if (to) to->setRankMinima(g.rankMinima());
   }
   std::vector<double> removed = massRemoved_;
@@ -105,6 +107,24 @@ void Simulation::gatherInto(Simulation* view) {
   if (bed_) *view->bed_ = *bed_; // replicated on every rank
   view->massRemoved_ = removed;
   view->times_ = times_;
+}
+
+void Simulation::particleRecords(size_t group, std::vector<char>& settled, std::vector<char>& fresh) const {
+  const MaterialGroup& g = *groupPtrs_.at(group);
+  const size_t made = group < fresh_.size() ? fresh_[group] : 0;
+  std::vector<uint32_t> idx(g.size() - made);
+  std::iota(idx.begin(), idx.end(), 0u);
+  packParticles(g, idx, settled);
+  idx.resize(made);
+  std::iota(idx.begin(), idx.end(), uint32_t(g.size() - made));
+  packParticles(g, idx, fresh);
+}
+
+void Simulation::appendParticleRecords(size_t group, std::string_view records) {
+  MaterialGroup& g = *groupPtrs_.at(group);
+  if (records.size() % (ParticleSet::bytesPerParticle() + g.stateBytesPerParticle()) != 0)
+    throw std::runtime_error("the particles of '" + g.name() + "' are not whole records");
+  appendParticles(g, records);
 }
 
 } // namespace talus

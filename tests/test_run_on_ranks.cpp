@@ -7,6 +7,7 @@
 #include "test_support.h"
 #include "water_flume.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -34,13 +35,15 @@ std::string bytes(const fs::path& p) {
 }
 
 /// Every file of a against b's, except those that differ between two one-process runs too
-/// (summary.json's wall times and report.html, which shows them; a VDB file's unique id).
+/// (summary.json's wall times and report.html, which shows them; a VDB file's unique id), and the
+/// checkpoint: on ranks it lists each rank's part (checkpoint_parts/), so the tests compare what
+/// it resumes to instead.
 void expectSameFiles(const std::string& a, const std::string& b) {
   size_t compared = 0;
   for (const auto& e : fs::recursive_directory_iterator(a)) {
     if (!e.is_regular_file()) continue;
     const fs::path rel = fs::relative(e.path(), a);
-    if (rel == "summary.json" || rel == "report.html" || rel.extension() == ".vdb") continue;
+    if (rel == "summary.json" || rel == "report.html" || rel.extension() == ".vdb" || rel == "checkpoint.h5") continue;
     ASSERT_TRUE(fs::exists(fs::path(b) / rel)) << rel;
     EXPECT_TRUE(bytes(e.path()) == bytes(fs::path(b) / rel)) << rel << " differs";
     ++compared;
@@ -100,6 +103,59 @@ TEST(RunOnRanks, ARunCheckpointedAtFourRanksResumesAtTwo) {
   // The four ranks' last checkpoint (t = 0.11 s), resumed at two ranks, ends where one process did.
   ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + " --quiet --threads 1 --resume " + dir + "/four", out), 0) << out;
   expectSameFiles(dir + "/one", dir + "/four");
+}
+
+/// The files of dir/checkpoint_parts.
+std::vector<std::string> partFiles(const std::string& dir) {
+  std::vector<std::string> names;
+  if (fs::exists(dir + "/checkpoint_parts"))
+    for (const auto& e : fs::directory_iterator(dir + "/checkpoint_parts")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(RunOnRanks, EachRankWritesItsPartOfACheckpointAndADamagedOrMissingPartIsRefusedByName) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_checkpoint_parts");
+  const std::string scene = sceneFile(dir);
+  // Frames every 0.02 s, so the resumed run's files below are enough to compare (12).
+  const std::string set = " --set output.frame_interval=0.02 --quiet --threads 1";
+  const std::string to5 = " --set simulation.end_time=0.05" + set, to6 = " --set simulation.end_time=0.06" + set;
+  std::string out;
+  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + to5 + " --out " + dir + "/two", out), 0) << out;
+  // The last checkpoint's two parts only: the four before it were removed once it was in place.
+  const std::vector<std::string> parts = partFiles(dir + "/two");
+  ASSERT_EQ(parts.size(), 2u) << "parts of older checkpoints are left";
+  EXPECT_EQ(parts[0].substr(parts[0].size() - 9), "_rank0.h5");
+  EXPECT_EQ(parts[1].substr(parts[1].size() - 9), "_rank1.h5");
+  // Each rank's part holds its own particles, about half of them each, and together all of them:
+  // rank 0 wrote the clock and the ledgers, not the particles. (Bytes: a part is its records.)
+  const size_t a = fs::file_size(dir + "/two/checkpoint_parts/" + parts[0]), b = fs::file_size(dir + "/two/checkpoint_parts/" + parts[1]);
+  EXPECT_GT(std::min(a, b), std::max(a, b) / 4) << a << " and " << b << " bytes";
+  EXPECT_LT(fs::file_size(dir + "/two/checkpoint.h5"), std::min(a, b) / 4) << "the checkpoint itself holds particles";
+  // One process resumes it (to 0.06 s) as it resumes its own checkpoint.
+  ASSERT_EQ(test::runTalus("run " + scene + to6 + " --out " + dir + "/one", out), 0) << out;
+  fs::copy(dir + "/two", dir + "/resumed", fs::copy_options::recursive);
+  ASSERT_EQ(test::runTalus("run " + scene + to6 + " --resume " + dir + "/resumed", out), 0) << out;
+  expectSameFiles(dir + "/one", dir + "/resumed");
+  // A damaged part, then a missing one: refused, naming the part.
+  fs::copy(dir + "/two", dir + "/damaged", fs::copy_options::recursive);
+  const std::string part1 = dir + "/damaged/checkpoint_parts/" + parts[1];
+  {
+    std::fstream f(part1, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(long(b / 2));
+    const char flipped = char(0x5a);
+    f.write(&flipped, 1);
+  }
+  EXPECT_NE(test::runTalus("run " + scene + to6 + " --resume " + dir + "/damaged", out), 0);
+  EXPECT_NE(out.find(parts[1] + ": a part of checkpoint"), std::string::npos) << out;
+  EXPECT_NE(out.find("damaged (checksum mismatch)"), std::string::npos) << out;
+  fs::remove(part1);
+  EXPECT_NE(test::runTalus("run " + scene + to6 + " --resume " + dir + "/damaged", out), 0);
+  EXPECT_NE(out.find(parts[1] + ": a part of checkpoint"), std::string::npos) << out;
+  EXPECT_NE(out.find("missing"), std::string::npos) << out;
+  // A run resumed in one process writes its checkpoints whole, and the parts go with the last one.
+  EXPECT_TRUE(partFiles(dir + "/resumed").empty());
 }
 
 TEST(RunOnRanks, AnErodibleFieldsRunAtTwoRanksWritesOneProcesssFiles) {

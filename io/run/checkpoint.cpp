@@ -1,5 +1,7 @@
 #include "io/run/checkpoint.h"
 
+#include "io/run/checkpoint_parts.h"
+
 #include "io/common/atomic_file.h"
 #include "io/common/h5_file.h"
 #include "io/common/input_error.h"
@@ -83,20 +85,6 @@ std::string headerBody(const Header& h) {
          h.scene + "\nbytes " + std::to_string(h.bytes) + "\ncrc32 " + hex32(h.crc) + "\n";
 }
 
-/// CRC-32 of bytes [from, end) of an open file; throws on a read error.
-uint32_t crcOfFile(int fd, uint64_t from, uint64_t end, const std::function<void(const std::string&)>& fail) {
-  std::vector<unsigned char> buf(size_t(1) << 20);
-  uLong crc = ::crc32(0, nullptr, 0);
-  for (uint64_t at = from; at < end;) {
-    const ssize_t r = ::pread(fd, buf.data(), size_t(std::min<uint64_t>(buf.size(), end - at)), off_t(at));
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) fail(r < 0 ? errnoText(errno) : "file shrank while being read");
-    crc = ::crc32(crc, buf.data(), uInt(r));
-    at += uint64_t(r);
-  }
-  return uint32_t(crc);
-}
-
 /// The HDF5 part is written and closed; now its length and checksum go into the user block.
 void seal(const std::string& tmp, const CheckpointIdentity& id) {
   const int fd = ::open(tmp.c_str(), O_RDWR | O_CLOEXEC);
@@ -112,7 +100,7 @@ void seal(const std::string& tmp, const CheckpointIdentity& id) {
   h.version = talusVersion();
   h.scene = id.sceneHash;
   h.bytes = uint64_t(st.st_size) - kHeaderBytes;
-  h.crc = crcOfFile(fd, kHeaderBytes, uint64_t(st.st_size), fail);
+  h.crc = crc32OfFile(fd, kHeaderBytes, uint64_t(st.st_size), fail);
   std::string text = headerBody(h);
   text += "header_crc32 " + hex32(crc32Of(text)) + "\n";
   if (text.size() > kHeaderBytes) fail("checkpoint header too long");
@@ -165,7 +153,7 @@ CheckpointHeader inspectCheckpoint(const std::string& path) {
   if (h.bytes != size - kHeaderBytes)
     refuse("truncated or extended: " + std::to_string(size - kHeaderBytes) + " bytes after the header, " +
            std::to_string(h.bytes) + " written");
-  if (hex32(crcOfFile(fd, kHeaderBytes, size, refuse)) != crc) refuse("damaged (checksum mismatch)");
+  if (hex32(crc32OfFile(fd, kHeaderBytes, size, refuse)) != crc) refuse("damaged (checksum mismatch)");
   return {h.format, h.version, h.scene};
 }
 
@@ -241,7 +229,15 @@ void readCheckpoint(const std::string& path, Simulation& sim, const CheckpointId
     h5::Handle f = h5::openFile(path);
     H5Archive a(f, false);
     sim.load(a);
+    // Written on ranks: the particles are in the parts the checkpoint lists.
+    if (h5::exists(f, "/state/" + std::string(kPartList))) {
+      std::string list(a.size(kPartList), '\0');
+      a.get(kPartList, list.data(), list.size());
+      readCheckpointParts(path, parsePartList(list), sim);
+    }
     if (extra) extra(a);
+  } catch (const InputError&) {
+    throw; // a part, named
   } catch (const std::exception& e) {
     throw InputError(path, std::string("does not fit this scene: ") + e.what());
   }

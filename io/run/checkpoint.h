@@ -26,12 +26,16 @@ struct CheckpointIdentity {
 /// holding the format, the Talus version, the scene hash, the HDF5 part's length and its CRC-32.
 constexpr int kCheckpointFormat = 2;
 
+/// The entry of a checkpoint written on ranks that lists its parts (io/run/checkpoint_parts.h).
+constexpr char kPartList[] = "parts/list";
+
 /// Writes sim's state (see Simulation::save) and whatever `extra` adds (the run driver's clock
 /// and its outputs' accumulated state), atomically. Throws WriteError.
 void writeCheckpoint(const std::string& path, const Simulation& sim, const CheckpointIdentity& id,
                      const std::function<void(StateArchive&)>& extra = {});
 
-/// Restores a checkpoint into a simulation built from the same scene, then calls `extra`. The
+/// Restores a checkpoint into a simulation built from the same scene, then calls `extra`. A
+/// checkpoint written on ranks (its `extra` put kPartList) gets its particles from its parts. The
 /// header is checked before HDF5 sees the file, so a damaged file never reaches its parser.
 /// Throws InputError naming the file and the reason: missing, truncated, damaged (checksum), not
 /// a checkpoint, another format, another Talus version, another scene, or contents that do not

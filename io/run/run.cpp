@@ -5,6 +5,7 @@
 #include "io/output/particle_writer.h"
 #include "io/output/report_page.h"
 #include "io/run/checkpoint.h"
+#include "io/run/checkpoint_parts.h"
 #include "io/run/progress_bar.h"
 #include "io/run/run_ranks.h"
 #include "io/run/run_signals.h"
@@ -320,19 +321,32 @@ void Run::gatherOutputState() {
 void Run::checkpoint() {
   State& s = *s_;
   guarded([&] {
-    s.gatherView(*sim_);
+    // On ranks each writes its particles into a part (io/run/checkpoint_parts.h) and rank 0's
+    // view gets the rest of the state only: rank 0 never holds every particle for a checkpoint.
+    WrittenParts parts;
+    if (s.ranks.active()) {
+      sim_->gatherInto(s.viewed.get(), Simulation::ViewContents::WithoutParticles);
+      parts = writeCheckpointParts(s.ranks.comm(), s.checkpointFile, *sim_);
+    }
     gatherOutputState();
     s.ranks.onRoot([&] {
+      if (parts.failure) throw *parts.failure;
       writeCheckpoint(s.checkpointFile, *s.view, s.identity, [&](StateArchive& a) {
         s.outputs->save(a);
         a.putValue("driver/next_frame", int32_t(s.frame));
         a.putValue("driver/frame_interval", s.interval);
         a.putValue("driver/next_checkpoint", s.nextCheckpoint);
+        if (s.ranks.active()) {
+          const std::string list = partListText(parts.parts);
+          a.put(kPartList, list.data(), list.size());
+        }
       });
+      removeStaleParts(s.checkpointFile, parts.parts); // the parts of the checkpoint replaced
     });
     res_.checkpointTime = sim_->time();
-    // Interrupted, the end's summary is written from this view next (finish).
-    if (res_.status != RunStatus::Interrupted) s.releaseView();
+    // Interrupted, the end's summary is written from this view next (finish): every particle.
+    if (res_.status == RunStatus::Interrupted) s.gatherView(*sim_);
+    else s.releaseView();
   });
 }
 
