@@ -134,36 +134,64 @@ size_t DomainDecomposition::migrate(const std::vector<MaterialGroup*>& groups, R
   const Real invDx = Real(1) / dx;
   size_t sent = 0;
   order_.assign(groups.size(), {});
+  // Every material's leavers go in one message per rank (per material: its byte count, then its
+  // records), so a step migrates with one exchange, not one per material. A rank no particle
+  // goes to gets no message at all, as before.
+  std::vector<std::vector<char>> send(static_cast<size_t>(n));
+  std::vector<uint8_t> anyTo(static_cast<size_t>(n), 0);
+  std::vector<std::vector<uint8_t>> stays(groups.size());
+  std::vector<size_t> leaving(groups.size(), 0);
+  std::vector<char> records;
   for (size_t gi = 0; gi < groups.size(); ++gi) {
-    MaterialGroup* g = groups[gi];
-    const auto& x = g->particles.x;
+    const auto& x = groups[gi]->particles.x;
     std::vector<std::vector<uint32_t>> to(static_cast<size_t>(n));
-    std::vector<uint8_t> stays(x.size());
+    stays[gi].resize(x.size());
     BlockCoord last{INT32_MIN, 0, 0};
     int dest = me;
-    size_t leaving = 0;
     for (size_t p = 0; p < x.size(); ++p) {
       const BlockCoord b = owningBlock(x[p], invDx);
       if (b != last) last = b, dest = owner(b);
-      stays[p] = dest == me;
-      if (dest != me) to[size_t(dest)].push_back(uint32_t(p)), ++leaving;
+      stays[gi][p] = dest == me;
+      if (dest != me) to[size_t(dest)].push_back(uint32_t(p)), ++leaving[gi];
     }
-    std::vector<std::vector<char>> send(static_cast<size_t>(n));
-    for (int r = 0; r < n; ++r)
-      if (r != me) packParticles(*g, to[size_t(r)], send[size_t(r)]), sent += to[size_t(r)].size();
-    const auto recv = comm_->exchange(send);
+    for (int r = 0; r < n; ++r) {
+      if (r == me) continue;
+      packParticles(*groups[gi], to[size_t(r)], records);
+      const uint64_t bytes = records.size();
+      std::vector<char>& out = send[size_t(r)];
+      out.insert(out.end(), reinterpret_cast<const char*>(&bytes), reinterpret_cast<const char*>(&bytes) + sizeof bytes);
+      out.insert(out.end(), records.begin(), records.end());
+      sent += to[size_t(r)].size();
+      anyTo[size_t(r)] |= !to[size_t(r)].empty();
+    }
+  }
+  for (int r = 0; r < n; ++r)
+    if (!anyTo[size_t(r)]) send[size_t(r)].clear();
+  const auto recv = comm_->exchange(send);
+  std::vector<size_t> at(static_cast<size_t>(n), 0); // where each rank's next material starts
+  auto next = [&](int r) {
+    const std::vector<char>& in = recv[size_t(r)];
+    if (in.empty()) return std::string_view(); // nothing from r, in any material
+    uint64_t bytes = 0;
+    std::memcpy(&bytes, in.data() + at[size_t(r)], sizeof bytes);
+    const std::string_view part(in.data() + at[size_t(r)] + sizeof bytes, size_t(bytes));
+    at[size_t(r)] += sizeof bytes + size_t(bytes);
+    return part;
+  };
+  for (size_t gi = 0; gi < groups.size(); ++gi) {
+    MaterialGroup* g = groups[gi];
     // Only what moves is copied: leavers are compacted out, arrivals appended (lower ranks'
     // first), and binning's stable sort takes the lower ranks' arrivals before our own particles.
     const size_t made = fresh && gi < fresh->size() ? (*fresh)[gi] : 0;
-    const size_t madeStaying = size_t(std::count(stays.end() - long(made), stays.end(), uint8_t(1)));
-    if (leaving) {
-      g->particles.forEachArray([&](auto& a) { compactInPlace(a, stays); });
-      g->compactState(stays);
+    const size_t madeStaying = size_t(std::count(stays[gi].end() - long(made), stays[gi].end(), uint8_t(1)));
+    if (leaving[gi]) {
+      g->particles.forEachArray([&](auto& a) { compactInPlace(a, stays[gi]); });
+      g->compactState(stays[gi]);
     }
     const size_t own = g->size(), ownBefore = own - madeStaying;
-    for (int r = 0; r < me; ++r) appendParticles(*g, recv[size_t(r)]);
+    for (int r = 0; r < me; ++r) appendParticles(*g, next(r));
     const size_t lower = g->size() - own;
-    for (int r = me + 1; r < n; ++r) appendParticles(*g, recv[size_t(r)]);
+    for (int r = me + 1; r < n; ++r) appendParticles(*g, next(r));
     // One process's order: lower ranks' particles, ours, higher ranks', then the ones made since.
     if (lower || madeStaying)
       order_[gi] = {{own, own + lower}, {0, ownBefore}, {own + lower, g->size()}, {ownBefore, own}};
