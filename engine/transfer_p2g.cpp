@@ -151,7 +151,7 @@ PadBox reachedNodes(const std::vector<MaterialGroup*>& groups, const SparseGrid&
     for (size_t p = g->blockStart[b]; p < g->blockStart[b + 1]; ++p) {
       const Vec3 xs = g->particles.x[p] * invDx; // as QuadraticStencil's base
       for (int d = 0; d < 3; ++d) {
-        const int l = int(std::floor(xs[d] - Real(0.5))) - origin[d];
+        const int l = floorToInt(xs[d] - Real(0.5)) - origin[d];
         box.lo[d] = std::min(box.lo[d], l);
         box.hi[d] = std::max(box.hi[d], l + 2);
       }
