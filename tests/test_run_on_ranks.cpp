@@ -158,6 +158,28 @@ TEST(RunOnRanks, EachRankWritesItsPartOfACheckpointAndADamagedOrMissingPartIsRef
   EXPECT_TRUE(partFiles(dir + "/resumed").empty());
 }
 
+TEST(RunOnRanks, RanksThatDoNotShareTheOutputFolderGatherTheCheckpointToRankZero) {
+  // Rank 1 runs in its own mount namespace with a tmpfs over the output folder: the same path,
+  // another folder, as a node's own disk would be. Its part would be lost, so rank 0 writes the
+  // checkpoint with every particle, as one process's, and says so.
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  std::string out;
+  if (test::shell("unshare -m --propagation private true", out) != 0) GTEST_SKIP() << "no private mount namespace here (run as root): " << out;
+  const std::string dir = test::tempDir("ranks_unshared");
+  const std::string scene = sceneFile(dir), run = dir + "/run";
+  fs::create_directories(run);
+  const std::string talus = std::string(TALUS_BINARY " run ") + scene + " --set simulation.end_time=0.05 --set output.frame_interval=0.02 --quiet --threads 1 --out " + run;
+  const std::string cmd = mpirun(2) + "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then exec unshare -m --propagation private sh -c \"mount -t tmpfs none " +
+                          run + " && exec " + talus + "\"; else exec " + talus + "; fi'";
+  ASSERT_EQ(test::shell(cmd, out), 0) << out;
+  EXPECT_NE(out.find("is not the same folder on every rank"), std::string::npos) << out;
+  EXPECT_TRUE(partFiles(run).empty()) << "a rank wrote its part where the others cannot read it";
+  // The checkpoint holds every particle: one process resumes it to a straight run's files.
+  ASSERT_EQ(test::runTalus("run " + scene + " --set simulation.end_time=0.06 --set output.frame_interval=0.02 --quiet --threads 1 --out " + dir + "/one", out), 0) << out;
+  ASSERT_EQ(test::runTalus("run " + scene + " --set simulation.end_time=0.06 --set output.frame_interval=0.02 --quiet --threads 1 --resume " + run, out), 0) << out;
+  expectSameFiles(dir + "/one", run);
+}
+
 TEST(RunOnRanks, AnErodibleFieldsRunAtTwoRanksWritesOneProcesssFiles) {
   // A snow slab sliding down a 30-degree DEM over a 0.2 m cover (0.4 cells: a field, issue 40):
   // the erosion-depth map, the entrained-mass series and the particles the pools made are one

@@ -59,6 +59,7 @@ struct Run::State {
   int threads = 1; ///< TBB threads of this process
   std::unique_ptr<tbb::global_control> threadLimit;
   std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
+  bool checkpointParts = false;       ///< every rank writes its particles' part of a checkpoint
   Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
   RunInfo info;
   std::optional<OutputSet> outputs;
@@ -134,6 +135,13 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
       s.outputs->start(*s.view);
     });
+    // Each rank writes its part of a checkpoint where every rank sees the output folder.
+    s.checkpointParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
+    if (s.ranks.active() && !s.checkpointParts && s.ranks.root()) {
+      s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints are "
+                             "written by rank 0 with every particle, not in parts by each rank");
+      std::fprintf(stderr, "talus: %s\n", s.info.notes.back().c_str());
+    }
     // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts).
     if (!s.ranks.root()) s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_);
     if (opt.resume) {
@@ -323,10 +331,13 @@ void Run::checkpoint() {
   guarded([&] {
     // On ranks each writes its particles into a part (io/run/checkpoint_parts.h) and rank 0's
     // view gets the rest of the state only: rank 0 never holds every particle for a checkpoint.
+    // (Ranks that do not share the output folder gather every particle to rank 0 instead.)
     WrittenParts parts;
-    if (s.ranks.active()) {
+    if (s.checkpointParts) {
       sim_->gatherInto(s.viewed.get(), Simulation::ViewContents::WithoutParticles);
       parts = writeCheckpointParts(s.ranks.comm(), s.checkpointFile, *sim_);
+    } else {
+      s.gatherView(*sim_);
     }
     gatherOutputState();
     s.ranks.onRoot([&] {
@@ -336,7 +347,7 @@ void Run::checkpoint() {
         a.putValue("driver/next_frame", int32_t(s.frame));
         a.putValue("driver/frame_interval", s.interval);
         a.putValue("driver/next_checkpoint", s.nextCheckpoint);
-        if (s.ranks.active()) {
+        if (s.checkpointParts) {
           const std::string list = partListText(parts.parts);
           a.put(kPartList, list.data(), list.size());
         }
@@ -345,8 +356,8 @@ void Run::checkpoint() {
     });
     res_.checkpointTime = sim_->time();
     // Interrupted, the end's summary is written from this view next (finish): every particle.
-    if (res_.status == RunStatus::Interrupted) s.gatherView(*sim_);
-    else s.releaseView();
+    if (res_.status != RunStatus::Interrupted) s.releaseView();
+    else if (s.checkpointParts) s.gatherView(*sim_);
   });
 }
 

@@ -1,7 +1,11 @@
 #include "io/run/run_ranks.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sched.h>
 #include <unistd.h>
 
@@ -28,6 +32,29 @@ void RootLoadBalance::afterStep(const RunRanks& ranks, Simulation& sim) {
   std::vector<double> shares(size_t(n), (1 - share_) / (n - 1));
   shares[0] = share_;
   sim.setRankShares(std::move(shares));
+}
+
+bool RunRanks::shareFolder(const std::string& dir) const {
+  if (!active()) return true;
+  // A token no other run writes: rank 0's host, process and clock.
+  const std::filesystem::path probe = std::filesystem::path(dir) / ".talus_ranks_probe";
+  std::string token;
+  if (root()) {
+    char host[64] = {};
+    gethostname(host, sizeof host - 1);
+    token = std::string(host) + " " + std::to_string(getpid()) + " " +
+            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+    std::ofstream(probe) << token; // closed here, before the others look (NFS: close-to-open)
+  }
+  std::vector<size_t> counts;
+  const std::vector<char> all = comm_->allGather(std::vector<char>(token.begin(), token.end()), counts);
+  std::ifstream in(probe);
+  const std::string seen((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const bool same = !counts.empty() && counts[0] > 0 && seen == std::string(all.data(), counts[0]);
+  const bool everyone = comm_->minOf(same ? 1.0 : 0.0) > 0;
+  std::error_code ec;
+  if (root()) std::filesystem::remove(probe, ec); // after every rank has looked
+  return everyone;
 }
 
 namespace {

@@ -9,6 +9,7 @@
 
 #include <exception>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace talus {
@@ -63,6 +64,11 @@ public:
   }
   /// The largest of every rank's v (v itself without ranks).
   int agree(int v) const { return active() ? int(comm_->maxOf(v)) : v; }
+  /// Collective: whether every rank sees rank 0's folder `dir` (which must exist there) as the
+  /// same folder: a file rank 0 writes into it is read back, with its content, by every rank. A
+  /// cluster's shared file system passes; a node's own disk under the same path does not. True
+  /// without ranks.
+  bool shareFolder(const std::string& dir) const;
 
 private:
   /// f's exception on the root (null elsewhere, or when f returned).
