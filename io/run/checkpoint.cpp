@@ -144,9 +144,9 @@ CheckpointHeader inspectCheckpoint(const std::string& path) {
   in >> key[0] >> h.format >> key[1] >> h.version >> key[2] >> h.scene >> key[3] >> h.bytes >> key[4] >> crc;
   if (!in || key[0] != "format" || key[1] != "talus" || key[2] != "scene" || key[3] != "bytes" || key[4] != "crc32")
     refuse("damaged header");
-  if (h.format != kCheckpointFormat)
-    refuse("checkpoint format " + std::to_string(h.format) + "; this Talus reads format " +
-           std::to_string(kCheckpointFormat));
+  if (h.format < kOldestCheckpointFormat || h.format > kCheckpointFormat)
+    refuse("checkpoint format " + std::to_string(h.format) + "; this Talus reads formats " +
+           std::to_string(kOldestCheckpointFormat) + " to " + std::to_string(kCheckpointFormat));
   if (h.version != talusVersion())
     refuse("written by Talus " + h.version + "; this is Talus " + talusVersion() +
            ", which resumes only its own checkpoints (finish the run with Talus " + h.version + " or start again)");

@@ -24,7 +24,10 @@ struct CheckpointIdentity {
 
 /// The checkpoint file format: an HDF5 file behind a 512-byte text header (an HDF5 user block)
 /// holding the format, the Talus version, the scene hash, the HDF5 part's length and its CRC-32.
-constexpr int kCheckpointFormat = 2;
+/// Format 3 adds the parts of a checkpoint written on ranks (kPartList), so a Talus that reads
+/// format 2 only refuses one instead of resuming it without particles; format 2 (no parts) is read.
+constexpr int kCheckpointFormat = 3;
+constexpr int kOldestCheckpointFormat = 2;
 
 /// The entry of a checkpoint written on ranks that lists its parts (io/run/checkpoint_parts.h).
 constexpr char kPartList[] = "parts/list";
