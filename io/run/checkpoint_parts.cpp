@@ -49,21 +49,9 @@ CheckpointPart measure(const std::string& path, const std::function<void(const s
   return m;
 }
 
-} // namespace
-
-uint32_t crc32OfFile(int fd, uint64_t from, uint64_t end, const std::function<void(const std::string&)>& fail) {
-  std::vector<unsigned char> buf(size_t(1) << 20);
-  uLong crc = ::crc32(0, nullptr, 0);
-  for (uint64_t at = from; at < end;) {
-    const ssize_t r = ::pread(fd, buf.data(), size_t(std::min<uint64_t>(buf.size(), end - at)), off_t(at));
-    if (r < 0 && errno == EINTR) continue;
-    if (r <= 0) fail(r < 0 ? errnoText(errno) : "file shrank while being read");
-    crc = ::crc32(crc, buf.data(), uInt(r));
-    at += uint64_t(r);
-  }
-  return uint32_t(crc);
-}
-
+/// Writes this process's particles (Simulation::particleRecords of every group) to
+/// checkpoint_parts/step<S>_rank<rank>.h5 beside `checkpointPath`, atomically; returns the part
+/// as the checkpoint lists it. Throws WriteError naming the file.
 CheckpointPart writeCheckpointPart(const std::string& checkpointPath, const Simulation& sim, int rank) {
   CheckpointPart part;
   part.file = partName(checkpointPath, sim.steps(), rank);
@@ -88,6 +76,21 @@ CheckpointPart writeCheckpointPart(const std::string& checkpointPath, const Simu
     part.bytes = m.bytes, part.crc = m.crc;
   });
   return part;
+}
+
+} // namespace
+
+uint32_t crc32OfFile(int fd, uint64_t from, uint64_t end, const std::function<void(const std::string&)>& fail) {
+  std::vector<unsigned char> buf(size_t(1) << 20);
+  uLong crc = ::crc32(0, nullptr, 0);
+  for (uint64_t at = from; at < end;) {
+    const ssize_t r = ::pread(fd, buf.data(), size_t(std::min<uint64_t>(buf.size(), end - at)), off_t(at));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) fail(r < 0 ? errnoText(errno) : "file shrank while being read");
+    crc = ::crc32(crc, buf.data(), uInt(r));
+    at += uint64_t(r);
+  }
+  return uint32_t(crc);
 }
 
 WrittenParts writeCheckpointParts(Communicator& comm, const std::string& checkpointPath, const Simulation& sim) {
@@ -134,7 +137,6 @@ std::vector<CheckpointPart> parsePartList(const std::string& text) {
 void readCheckpointParts(const std::string& checkpointPath, const std::vector<CheckpointPart>& parts, Simulation& sim) {
   const size_t groups = sim.groups().size();
   std::vector<std::string> paths;
-  std::vector<h5::Handle> files;
   auto refuser = [&](size_t i) {
     return [&, i](const std::string& why) -> void {
       throw InputError(paths[i], "a part of checkpoint " + checkpointPath + ": " + why);
@@ -148,22 +150,23 @@ void readCheckpointParts(const std::string& checkpointPath, const std::vector<Ch
     if (m.bytes != part.bytes) refuse("truncated or extended: " + std::to_string(m.bytes) + " bytes, " + std::to_string(part.bytes) + " written");
     if (m.crc != part.crc) refuse("damaged (checksum mismatch)");
     try {
-      files.push_back(h5::openFile(paths.back()));
-      if (h5::readDoubleAttribute(files.back(), "groups") != double(groups)) refuse("written for another number of materials");
+      if (h5::readDoubleAttribute(h5::openFile(paths.back()), "groups") != double(groups))
+        refuse("written for another number of materials");
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& e) {
       refuse(std::string("unreadable: ") + e.what());
     }
   }
-  // One part's records in memory at a time, appended where one process has them.
+  // One part's records in memory at a time, appended where one process has them. A part is
+  // opened for each read, not held open: at a thousand ranks they would pass the open-file limit.
   for (size_t g = 0; g < groups; ++g)
     for (const char* kind : {"settled", "fresh"})
-      for (size_t i = 0; i < files.size(); ++i) {
+      for (size_t i = 0; i < paths.size(); ++i) {
         std::vector<uint8_t> r;
         try {
           size_t rows = 0, cols = 0;
-          r = h5::readDataset<uint8_t>(files[i], groupPath(g, kind), rows, cols);
+          r = h5::readDataset<uint8_t>(h5::openFile(paths[i]), groupPath(g, kind), rows, cols);
           sim.appendParticleRecords(g, std::string_view(reinterpret_cast<const char*>(r.data()), r.size()));
         } catch (const std::exception& e) {
           refuser(i)(std::string("does not fit this scene: ") + e.what());

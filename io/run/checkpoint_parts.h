@@ -30,12 +30,8 @@ struct CheckpointPart {
   uint32_t crc = 0;
 };
 
-/// Writes this process's particles (Simulation::particleRecords of every group) to
-/// checkpoint_parts/step<S>_rank<rank>.h5 beside `checkpointPath`, atomically; returns the part
-/// as the checkpoint lists it. Throws WriteError naming the file.
-CheckpointPart writeCheckpointPart(const std::string& checkpointPath, const Simulation& sim, int rank);
-
-/// Collective: every rank writes its part (writeCheckpointPart), at once. On rank 0, every
+/// Collective: every rank writes its own particles (Simulation::particleRecords of every group)
+/// to checkpoint_parts/step<S>_rank<R>.h5 beside `checkpointPath`, atomically, at once. On rank 0, every
 /// rank's part in rank order, or the first failure as a WriteError to throw (the others get
 /// nothing: rank 0 reports, as it does every write failure of a run on ranks).
 struct WrittenParts {
