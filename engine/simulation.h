@@ -152,6 +152,8 @@ public:
   /// one process's order splits them: `settled` (every rank's in rank order), then `fresh` (made
   /// by the bed since binning, every rank's after all the settled ones). gatherInto's order.
   void particleRecords(size_t group, std::vector<char>& settled, std::vector<char>& fresh) const;
+  /// How many of group `group`'s particles (its last ones) particleRecords counts as fresh.
+  size_t freshParticles(size_t group) const { return group < fresh_.size() ? fresh_[group] : 0; }
   /// Appends particleRecords' records to group `group` (a resumed checkpoint's parts, in one
   /// process's order). Throws std::runtime_error when they are not whole records.
   void appendParticleRecords(size_t group, std::string_view records);

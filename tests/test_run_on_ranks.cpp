@@ -180,6 +180,42 @@ TEST(RunOnRanks, RanksThatDoNotShareTheOutputFolderGatherTheCheckpointToRankZero
   expectSameFiles(dir + "/one", run);
 }
 
+TEST(RunOnRanks, EachRankWritesItsRowsOfTheHdf5AndPlyFramesAndRankZeroGathersNoFrame) {
+  // Frames every 0.01 s in HDF5 and PLY without VDB: every rank writes its own particles' rows
+  // into each frame file, byte for byte one process's, and rank 0 gathers every particle twice
+  // (the start and the end), not at the six frames after the first; with VDB volumes it does.
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string dir = test::tempDir("ranks_frame_rows");
+  const std::string scene = sceneFile(dir);
+  const std::string set = " --set simulation.end_time=0.06 --set output.frame_interval=0.01 --set output.ply=true"
+                          " --set output.checkpoint_interval=0 --quiet --threads 1 --set output.vdb=";
+  auto gathers = [&](const std::string& run) {
+    const std::string s = bytes(run + "/summary.json"), key = "\"rank0_gathered_every_particle\": ";
+    const size_t at = s.find(key);
+    return at == std::string::npos ? -1 : std::atoi(s.c_str() + at + key.size());
+  };
+  std::string out;
+  ASSERT_EQ(test::runTalus("run " + scene + set + "false --out " + dir + "/one", out), 0) << out;
+  for (int n : {2, 4}) {
+    const std::string to = dir + "/" + std::to_string(n);
+    ASSERT_EQ(test::shell(mpirun(n) + TALUS_BINARY " run " + scene + set + "false --out " + to, out), 0) << out;
+    expectSameFiles(dir + "/one", to);
+    EXPECT_TRUE(fs::exists(to + "/frames/particles_00006.ply") && fs::exists(to + "/frames/particles_00006.h5"));
+    EXPECT_EQ(gathers(to), 2) << to;
+  }
+  ASSERT_EQ(test::shell(mpirun(2) + TALUS_BINARY " run " + scene + set + "true --out " + dir + "/vdb", out), 0) << out;
+  EXPECT_EQ(gathers(dir + "/vdb"), 8);
+  // Rank 1 under a file-size limit: its rows of the first frame it writes fail, and rank 0 names
+  // the frame in one line; the frames before it stay whole and no temporary is left.
+  const std::string limited = dir + "/limited";
+  const std::string cmd = mpirun(2) + "sh -c 'if [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then trap \"\" XFSZ; exec prlimit --fsize=4096 " TALUS_BINARY
+                          " run " + scene + set + "false --out " + limited + "; else exec " TALUS_BINARY " run " + scene + set + "false --out " + limited + "; fi'";
+  EXPECT_NE(test::shell(cmd, out), 0);
+  EXPECT_NE(out.find("cannot write " + limited + "/frames/particles_00001.h5: File too large"), std::string::npos) << out;
+  EXPECT_TRUE(bytes(limited + "/frames/particles_00000.h5") == bytes(dir + "/one/frames/particles_00000.h5"));
+  EXPECT_FALSE(fs::exists(limited + "/frames/particles_00001.h5") || fs::exists(limited + "/frames/particles_00001.h5.tmp"));
+}
+
 TEST(RunOnRanks, AnErodibleFieldsRunAtTwoRanksWritesOneProcesssFiles) {
   // A snow slab sliding down a 30-degree DEM over a 0.2 m cover (0.4 cells: a field, issue 40):
   // the erosion-depth map, the entrained-mass series and the particles the pools made are one

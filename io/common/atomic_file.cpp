@@ -82,6 +82,15 @@ void writeThroughMemory(const std::string& path, const std::function<void(const 
   if (size) ::munmap(bytes, size);
 }
 
+void commitFile(const std::string& tmp, const std::string& path) {
+  try {
+    syncFile(tmp);
+  } catch (const WriteError& e) {
+    throw WriteError(path, e.cause());
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) throw WriteError(path, errnoText(errno));
+}
+
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
                      const std::string& tmpSuffix) {
   const std::string tmp = path + tmpSuffix;

@@ -17,6 +17,11 @@ namespace talus {
 void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write,
                      const std::string& tmpSuffix = ".tmp");
 
+/// writeAtomically's end for a temporary that was written by other means (several processes'
+/// rows in one file, io/output/particle_file_parts.h): syncs `tmp` and renames it to `path`;
+/// throws WriteError(path, cause), leaving the temporary.
+void commitFile(const std::string& tmp, const std::string& path);
+
 /// Writes `size` bytes to `path` (created or truncated) with checked write(2) and close(2);
 /// throws WriteError(path, cause).
 void writeFileBytes(const std::string& path, const void* data, size_t size);

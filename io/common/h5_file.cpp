@@ -98,6 +98,24 @@ void writeDataset(hid_t parent, const std::string& name, const T* data, size_t r
 }
 
 template <class T>
+uint64_t createDatasetForRawWrites(hid_t parent, const std::string& name, size_t rows, size_t cols) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "raw rows are written in the host's byte order");
+  hsize_t dims[2] = {hsize_t(rows), hsize_t(cols)};
+  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose);
+  Handle dcpl = untimedObjects(H5P_DATASET_CREATE);
+  H5Pset_layout(dcpl, H5D_CONTIGUOUS);
+  H5Pset_alloc_time(dcpl, H5D_ALLOC_TIME_EARLY); // the offset exists before any write
+  H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER);   // every byte is the writers'
+  const hid_t id = H5Dcreate2(parent, name.c_str(), nativeType<T>(), space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  if (id < 0) throw WriteError(fileName(parent), lastError());
+  Handle set(id, H5Dclose);
+  if (!rows || !cols) return 0;
+  const haddr_t at = H5Dget_offset(set);
+  if (at == HADDR_UNDEF) throw WriteError(fileName(parent), "no storage allocated for dataset " + name);
+  return uint64_t(at);
+}
+
+template <class T>
 std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, size_t& cols) {
   Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
   Handle space(H5Dget_space(set), H5Sclose);
@@ -114,7 +132,8 @@ std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, si
 
 #define TALUS_H5_INSTANTIATE(T)                                                                     \
   template void writeDataset<T>(hid_t, const std::string&, const T*, size_t, size_t);             \
-  template std::vector<T> readDataset<T>(hid_t, const std::string&, size_t&, size_t&);
+  template std::vector<T> readDataset<T>(hid_t, const std::string&, size_t&, size_t&);             \
+  template uint64_t createDatasetForRawWrites<T>(hid_t, const std::string&, size_t, size_t);
 TALUS_H5_INSTANTIATE(double)
 TALUS_H5_INSTANTIATE(float)
 TALUS_H5_INSTANTIATE(int32_t)

@@ -55,6 +55,12 @@ template <class T> hid_t nativeType();
 /// Writes a rows x cols dataset (cols = 1 writes a 1-D dataset).
 template <class T>
 void writeDataset(hid_t parent, const std::string& name, const T* data, size_t rows, size_t cols);
+/// Creates a rows x cols dataset of T whose storage is allocated now, contiguous and unfilled,
+/// and returns the file offset where its row-major bytes start (0 when rows == 0). They are written
+/// afterwards, by any process, in place (io/output/particle_file_parts.h): HDF5 never writes
+/// them. The file's type is T's native (little-endian) type. Throws WriteError naming the file.
+template <class T>
+uint64_t createDatasetForRawWrites(hid_t parent, const std::string& name, size_t rows, size_t cols);
 template <class T>
 std::vector<T> readDataset(hid_t file, const std::string& name, size_t& rows, size_t& cols);
 bool exists(hid_t file, const std::string& path);

@@ -19,9 +19,15 @@ H5FrameWriter::H5FrameWriter(std::string outDir, std::vector<std::string> materi
 }
 
 void H5FrameWriter::onFrame(const Simulation& sim, int index) {
+  SerialCommunicator one;
+  if (auto failure = onFrameParts(one, sim, index)) throw *failure;
+}
+
+std::optional<WriteError> H5FrameWriter::onFrameParts(Communicator& comm, const Simulation& local, int index) {
   const std::string rel = frameFileName("particles", index, "h5");
-  writeParticlesH5((std::filesystem::path(outDir_) / rel).string(), sim, materialNames_);
-  recordFile(rel);
+  auto failure = writeParticlesH5(comm, (std::filesystem::path(outDir_) / rel).string(), local, materialNames_);
+  if (!failure) recordFile(rel);
+  return failure;
 }
 
 } // namespace talus

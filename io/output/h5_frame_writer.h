@@ -10,6 +10,8 @@ public:
   H5FrameWriter(std::string outDir, std::vector<std::string> materialNames);
   std::string name() const override { return "h5_frames"; }
   void onFrame(const Simulation& sim, int index) override;
+  bool framesInParts() const override { return true; }
+  std::optional<WriteError> onFrameParts(Communicator& comm, const Simulation& local, int index) override;
 
 private:
   std::string outDir_;

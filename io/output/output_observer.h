@@ -3,9 +3,13 @@
 // nothing (io/output_set.cpp decides which exist).
 #pragma once
 
+#include "engine/communicator.h"
 #include "engine/simulation.h"
 #include "engine/state_archive.h"
+#include "io/common/write_error.h"
 #include "io/output/step_parts.h"
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -25,6 +29,15 @@ public:
   virtual void onStep(const Simulation& sim, double dt) {}
   /// At every frame time (frame 0 is the initial state).
   virtual void onFrame(const Simulation& sim, int index) {}
+  /// Whether the frame's file is written by every process from its own particles, collectively
+  /// (onFrameParts), instead of by rank 0 from a view of every particle (onFrame).
+  virtual bool framesInParts() const { return false; }
+  /// Collective on every process with its own particles, for an output whose framesInParts():
+  /// this frame's file, byte for byte one process's. Returns on rank 0 the first failure of any
+  /// process (nothing elsewhere); onFrame is the same call for one process.
+  virtual std::optional<WriteError> onFrameParts(Communicator& comm, const Simulation& local, int index) {
+    return std::nullopt;
+  }
   /// After the last step. `completed` is false when the run stopped on a numerical failure:
   /// particle state may then be non-finite, so "final state" outputs should be skipped.
   virtual void onFinish(const Simulation& sim, bool completed) {}

@@ -16,15 +16,18 @@
 namespace talus {
 
 OutputSet::OutputSet(const OutputSettings& o, const RunContext& run, const std::string& outDir) {
-  const std::string& crs = run.crsWkt;
-  if (o.frameInterval > 0) {
-    if (o.h5Frames) outputs_.push_back(std::make_unique<H5FrameWriter>(outDir, run.materialNames));
-    if (o.vdb) outputs_.push_back(std::make_unique<VdbVolumeWriter>(outDir, crs));
-    if (o.vdbPoints) outputs_.push_back(std::make_unique<VdbPointsWriter>(outDir, crs));
-    if (o.ply) outputs_.push_back(std::make_unique<PlyFrameWriter>(outDir));
-  }
+  addFrameOutputs(o, run, outDir, false);
   addStepOutputs(o, run, outDir);
   seconds_.assign(outputs_.size(), 0.0);
+}
+
+void OutputSet::addFrameOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir, bool inPartsOnly) {
+  if (o.frameInterval <= 0) return;
+  const std::string& crs = run.crsWkt;
+  if (o.h5Frames) outputs_.push_back(std::make_unique<H5FrameWriter>(outDir, run.materialNames));
+  if (o.vdb && !inPartsOnly) outputs_.push_back(std::make_unique<VdbVolumeWriter>(outDir, crs));
+  if (o.vdbPoints && !inPartsOnly) outputs_.push_back(std::make_unique<VdbPointsWriter>(outDir, crs));
+  if (o.ply) outputs_.push_back(std::make_unique<PlyFrameWriter>(outDir));
 }
 
 void OutputSet::addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir) {
@@ -45,10 +48,13 @@ void OutputSet::addStepOutputs(const OutputSettings& o, const RunContext& run, c
   }
 }
 
-OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, const Simulation& sim) {
-  // The per-step outputs in rank 0's order.
+OutputSet::OutputSet(PartsOnly, const OutputSettings& o, const RunContext& run, const Simulation& sim,
+                     const std::string& framesDir) {
+  // The frames written in parts, then the per-step outputs, each in rank 0's order.
+  if (!framesDir.empty()) addFrameOutputs(o, run, framesDir, true);
   addStepOutputs(o, run, "");
-  outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(), [](const auto& out) { return !out->readsEveryStep(); }),
+  outputs_.erase(std::remove_if(outputs_.begin(), outputs_.end(),
+                                [](const auto& out) { return !out->readsEveryStep() && !out->framesInParts(); }),
                  outputs_.end());
   for (auto& out : outputs_) out->prepareParts(sim);
   seconds_.assign(outputs_.size(), 0.0);
@@ -242,8 +248,20 @@ void OutputSet::load(const StateArchive& a) {
   }
 }
 
-void OutputSet::frame(const Simulation& sim, int index) {
-  each([&](OutputObserver& o) { o.onFrame(sim, index); });
+void OutputSet::frame(const Simulation& sim, int index, bool partsWritten) {
+  each([&](OutputObserver& o) {
+    if (!(partsWritten && o.framesInParts())) o.onFrame(sim, index);
+  });
+}
+
+std::optional<WriteError> OutputSet::frameParts(Communicator& comm, const Simulation& local, int index) {
+  std::optional<WriteError> first;
+  each([&](OutputObserver& o) {
+    if (!o.framesInParts()) return;
+    auto failure = o.onFrameParts(comm, local, index);
+    if (failure && !first) first = std::move(failure);
+  });
+  return first;
 }
 
 void OutputSet::finish(const Simulation& sim, bool completed) {

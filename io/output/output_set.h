@@ -26,9 +26,12 @@ public:
   OutputSet(const OutputSettings& settings, const RunContext& run, const std::string& outDir);
   /// Under ranks, on processes other than rank 0: only the outputs that read the particles after
   /// every step, which step in parts (OutputObserver::readsEveryStep), prepared from `sim`'s
-  /// scene. Touches no file.
+  /// scene, and, given rank 0's `framesDir` (the output folder, which this process sees too),
+  /// the frame formats written in parts (OutputObserver::framesInParts). Touches no file but
+  /// the frames folder.
   struct PartsOnly {};
-  OutputSet(PartsOnly, const OutputSettings& settings, const RunContext& run, const Simulation& sim);
+  OutputSet(PartsOnly, const OutputSettings& settings, const RunContext& run, const Simulation& sim,
+            const std::string& framesDir = "");
   ~OutputSet();
 
   void start(const Simulation& sim);
@@ -69,7 +72,13 @@ public:
   /// @throw std::runtime_error (takeSharedState) if the buffer does not hold it
   std::vector<char> sharedState(int ranks);
   void takeSharedState(std::string_view buffer, int ranks);
-  void frame(const Simulation& sim, int index);
+  /// On rank 0 (or one process): frame `index` from `sim`, which holds every particle. With
+  /// `partsWritten`, the outputs whose frames are written in parts are left out (frameParts
+  /// wrote them).
+  void frame(const Simulation& sim, int index, bool partsWritten = false);
+  /// Collective on every process with its own particles: the frame files written in parts
+  /// (OutputObserver::framesInParts). Returns on rank 0 the first failure.
+  std::optional<WriteError> frameParts(Communicator& comm, const Simulation& local, int index);
   void finish(const Simulation& sim, bool completed);
 
   /// Checkpointing of every output's accumulated state (see OutputObserver::save).
@@ -85,6 +94,8 @@ public:
 private:
   /// The outputs that may read the particles after every step (series, maps, peak files, run-up).
   void addStepOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir);
+  /// The frame formats; `inPartsOnly`: only those written in parts (the other ranks' set).
+  void addFrameOutputs(const OutputSettings& o, const RunContext& run, const std::string& outDir, bool inPartsOnly);
   template <class F> void each(F&& f);
   template <class F> void eachInParts(F&& f);
   /// Whether `o` steps by owner among `ranks` processes (one process owns everything).

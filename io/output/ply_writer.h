@@ -11,7 +11,11 @@ namespace talus {
 /// Writes every particle as a PLY vertex: x, y, z (double, world coordinates, m), vx, vy, vz
 /// (float, m/s), mass (float, kg), material (int, index into the scene's materials) and red,
 /// green, blue (uchar, a colour per material so viewers show materials apart).
+/// Throws WriteError naming `path`.
 void writeParticlesPly(const std::string& path, const Simulation& sim);
+/// The same file written by every process with its own particles, collectively (as
+/// writeParticlesH5's parts). Returns on rank 0 the first failure (nothing elsewhere).
+std::optional<WriteError> writeParticlesPly(Communicator& comm, const std::string& path, const Simulation& local);
 
 /// Display colour of material `index` (shared by the PLY writer and the plots).
 std::array<unsigned char, 3> materialColour(int index);
@@ -21,6 +25,8 @@ public:
   explicit PlyFrameWriter(std::string outDir);
   std::string name() const override { return "ply_frames"; }
   void onFrame(const Simulation& sim, int index) override;
+  bool framesInParts() const override { return true; }
+  std::optional<WriteError> onFrameParts(Communicator& comm, const Simulation& local, int index) override;
 
 private:
   std::string outDir_;

@@ -59,7 +59,9 @@ struct Run::State {
   int threads = 1; ///< TBB threads of this process
   std::unique_ptr<tbb::global_control> threadLimit;
   std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
-  bool checkpointParts = false;       ///< every rank writes its particles' part of a checkpoint
+  /// Every rank writes its own particles into files rank 0 lists or lays out (checkpoint parts,
+  /// the HDF5 and PLY frames): under ranks that all see the output folder.
+  bool writesInParts = false;
   Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
   RunInfo info;
   std::optional<OutputSet> outputs;
@@ -75,7 +77,9 @@ struct Run::State {
   /// Collective under ranks: rank 0's view gets every particle, for files written from it; the
   /// view holds them only until releaseView, so between writes rank 0 holds its own share.
   void gatherView(Simulation& sim) {
-    if (ranks.active()) sim.gatherInto(viewed.get());
+    if (!ranks.active()) return;
+    sim.gatherInto(viewed.get());
+    ++info.wholeGathers;
   }
   void releaseView() {
     if (viewed) viewed->releaseParticles();
@@ -129,21 +133,27 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   const bool seededInParts = scene.seedSlice.active() && !opt.resume;
   guarded([&] {
     // The outputs' start and frame 0 read every particle as seeded, in one process's order.
-    if (s.ranks.active()) sim_->gatherSeededInto(s.ranks.comm(), s.viewed.get(), seededInParts ? &scene.seedSlice.index : nullptr);
+    if (s.ranks.active()) {
+      sim_->gatherSeededInto(s.ranks.comm(), s.viewed.get(), seededInParts ? &scene.seedSlice.index : nullptr);
+      ++s.info.wholeGathers;
+    }
     s.ranks.onRoot([&] {
       makeDirectories(res_.outDir);
       s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
       s.outputs->start(*s.view);
     });
     // Each rank writes its part of a checkpoint where every rank sees the output folder.
-    s.checkpointParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
-    if (s.ranks.active() && !s.checkpointParts && s.ranks.root()) {
+    s.writesInParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
+    if (s.ranks.active() && !s.writesInParts && s.ranks.root()) {
       s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints are "
                              "written by rank 0 with every particle, not in parts by each rank");
       std::fprintf(stderr, "talus: %s\n", s.info.notes.back().c_str());
     }
     // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts).
-    if (!s.ranks.root()) s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_);
+    // and write their rows of the frames in parts.
+    if (!s.ranks.root())
+      s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_,
+                        s.writesInParts ? res_.outDir : std::string());
     if (opt.resume) {
       // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
       // a run checkpointed at N ranks resumes at any M.
@@ -199,12 +209,7 @@ bool Run::step() {
         }
         // 3 * 0.1 > 0.3 in floating point: the frame is due when the target is within rounding
         // of its time.
-        if (sim_->time() >= target && s.interval > 0 && target >= frameTime - 1e-9 * s.interval) {
-          s.gatherView(*sim_);
-          s.ranks.onRoot([&] { s.outputs->frame(*s.view, s.frame); });
-          s.releaseView();
-          ++s.frame;
-        }
+        if (sim_->time() >= target && s.interval > 0 && target >= frameTime - 1e-9 * s.interval) writeFrame();
       }
     } catch (const NumericalError& e) {
       res_.status = RunStatus::NumericalFailure;
@@ -214,6 +219,22 @@ bool Run::step() {
     if (res_.status == RunStatus::NumericalFailure || sim_->time() >= endTime_) finish();
   });
   return !ended_;
+}
+
+void Run::writeFrame() {
+  State& s = *s_;
+  // Each rank writes its rows of the HDF5 and PLY frames; rank 0 gathers every particle only for
+  // the VDB formats, or when the ranks do not share the output folder.
+  std::optional<WriteError> failure;
+  if (s.writesInParts) failure = s.outputs->frameParts(s.ranks.comm(), *sim_, s.frame);
+  const bool whole = !s.writesInParts || s.output.framesNeedEveryParticle();
+  if (whole) s.gatherView(*sim_);
+  s.ranks.onRoot([&] {
+    if (failure) throw *failure;
+    if (whole) s.outputs->frame(*s.view, s.frame, s.writesInParts);
+  });
+  s.releaseView();
+  ++s.frame;
 }
 
 bool Run::advanceTo(double t, const std::function<void()>& after) {
@@ -333,7 +354,7 @@ void Run::checkpoint() {
     // view gets the rest of the state only: rank 0 never holds every particle for a checkpoint.
     // (Ranks that do not share the output folder gather every particle to rank 0 instead.)
     WrittenParts parts;
-    if (s.checkpointParts) {
+    if (s.writesInParts) {
       sim_->gatherInto(s.viewed.get(), Simulation::ViewContents::WithoutParticles);
       parts = writeCheckpointParts(s.ranks.comm(), s.checkpointFile, *sim_);
     } else {
@@ -347,7 +368,7 @@ void Run::checkpoint() {
         a.putValue("driver/next_frame", int32_t(s.frame));
         a.putValue("driver/frame_interval", s.interval);
         a.putValue("driver/next_checkpoint", s.nextCheckpoint);
-        if (s.checkpointParts) {
+        if (s.writesInParts) {
           const std::string list = partListText(parts.parts);
           a.put(kPartList, list.data(), list.size());
         }
@@ -357,7 +378,7 @@ void Run::checkpoint() {
     res_.checkpointTime = sim_->time();
     // Interrupted, the end's summary is written from this view next (finish): every particle.
     if (res_.status != RunStatus::Interrupted) s.releaseView();
-    else if (s.checkpointParts) s.gatherView(*sim_);
+    else if (s.writesInParts) s.gatherView(*sim_);
   });
 }
 

@@ -55,6 +55,8 @@ public:
 private:
   struct State;
   void afterStep();
+  /// Frame s_->frame of the state now (collective under ranks), then the next frame's number.
+  void writeFrame();
   /// What every rank must agree on after a step: a checkpoint asked for (SIGUSR1), a stop signal.
   struct Agreed {
     int checkpoint = 0, signal = 0;

@@ -50,7 +50,10 @@ std::string writeSummaryJson(const std::string& path, const Simulation& sim, con
   j << "  \"threads\": " << info.threads << ",\n";
   if (!info.ranks.empty()) {
     // Per rank: its particles and owning blocks at the end, and where its time went.
-    j << "  \"ranks\": " << info.ranks.size() << ",\n  \"per_rank\": [\n";
+    // How often rank 0 held every particle at once: the start, the end, and frames in a VDB format
+    // or checkpoints where the ranks do not share the output folder (docs/scaling.md).
+    j << "  \"ranks\": " << info.ranks.size() << ",\n  \"rank0_gathered_every_particle\": " << info.wholeGathers
+      << ",\n  \"per_rank\": [\n";
     for (size_t r = 0; r < info.ranks.size(); ++r) {
       const RankFigures& f = info.ranks[r];
       j << "    {\"rank\": " << r << ", \"particles\": " << f.particles << ", \"blocks\": " << f.blocks

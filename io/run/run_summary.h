@@ -39,6 +39,7 @@ struct RunInfo {
   std::vector<OutputReport> outputs;
   std::vector<std::string> notes; ///< the scene's notes and warnings (thin bodies, filled DEM cells)
   std::vector<RankFigures> ranks;  ///< under mpirun, per rank (empty for one process)
+  uint64_t wholeGathers = 0;       ///< under mpirun: the times rank 0 gathered every particle
   MemoryFigures memory;            ///< one process's (under mpirun: per rank in `ranks`)
 };
 
