@@ -4,19 +4,82 @@
 #include "engine/padded_block.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 
 namespace talus {
 
-NodeFields scatterNodeFields(const Simulation& sim) {
-  NodeFields f;
-  f.dx = sim.settings().dx;
-  f.materials = int(sim.groups().size());
-  const Real invDx = Real(1.0 / f.dx);
-  const int channels = f.materials + 3; // mass per material, then momentum
+namespace {
 
-  // Particles by owning block (the block of their stencil's base node), in particle order.
+/// A power of two u with bound / u <= 2^62: a sum of shares of at most `bound` fits an int64.
+double unitFor(double bound) {
+  if (!(bound > 0) || !std::isfinite(bound)) return 1;
+  int e = 0;
+  std::frexp(bound, &e); // bound < 2^e
+  return std::ldexp(1.0, e - 62);
+}
+
+bool coordLess(const BlockCoord& a, const BlockCoord& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); }
+
+/// The units from every process's exact figures (a count and maxima: no rounding that depends
+/// on the ranks): a node's mass of material m is at most the count times m's largest particle
+/// mass, its momentum at most the count times the largest mass times the largest velocity component.
+std::vector<double> units(Communicator& comm, const Simulation& local) {
+  const double n = double(comm.sumOf(local.particleCount()));
+  std::vector<double> unit;
+  double heaviest = 0, fastest = 0;
+  for (const MaterialGroup* g : local.groups()) {
+    float m = 0;
+    for (const Real p : g->particles.mass) m = std::max(m, float(p));
+    for (const Vec3& v : g->particles.v) fastest = std::max(fastest, double(v.cwiseAbs().maxCoeff()));
+    const double largest = comm.maxOf(double(m));
+    heaviest = std::max(heaviest, largest);
+    unit.push_back(unitFor(n * largest));
+  }
+  fastest = comm.maxOf(fastest);
+  unit.push_back(unitFor(n * heaviest * fastest));
+  return unit;
+}
+
+/// Appends block c (zeroed) to `s`, or finds it; its index.
+size_t blockIndex(NodeSums& s, std::unordered_map<uint64_t, size_t>& index, const BlockCoord& c) {
+  const auto [it, fresh] = index.emplace(blockKey(c), s.blocks.size());
+  if (fresh) s.blocks.push_back(c), s.values.resize(s.values.size() + size_t(s.channels()) * kBlockNodes, 0);
+  return it->second;
+}
+
+/// Sorts the blocks by coordinate (their values with them), so the result does not depend on
+/// the particles' order.
+void sortBlocks(NodeSums& s) {
+  std::vector<size_t> order(s.blocks.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return coordLess(s.blocks[a], s.blocks[b]); });
+  const size_t per = size_t(s.channels()) * kBlockNodes;
+  std::vector<BlockCoord> blocks(s.blocks.size());
+  std::vector<int64_t> values(s.values.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    blocks[i] = s.blocks[order[i]];
+    std::copy_n(s.values.begin() + ptrdiff_t(order[i] * per), per, values.begin() + ptrdiff_t(i * per));
+  }
+  s.blocks.swap(blocks), s.values.swap(values);
+}
+
+} // namespace
+
+NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
+  NodeSums s;
+  s.dx = local.settings().dx;
+  s.materials = int(local.groups().size());
+  s.unit = units(comm, local);
+  const int channels = s.channels();
+  const Real invDx = Real(1.0 / s.dx);
+  std::vector<double> inv(s.unit.size());
+  for (size_t c = 0; c < inv.size(); ++c) inv[c] = 1.0 / s.unit[c];
+
+  // Particles by owning block (the block of their stencil's base node).
   struct Owned {
     int material;
     uint32_t particle;
@@ -24,8 +87,8 @@ NodeFields scatterNodeFields(const Simulation& sim) {
   std::unordered_map<uint64_t, size_t> ownerIndex;
   std::vector<BlockCoord> owners;
   std::vector<std::vector<Owned>> owned;
-  for (int m = 0; m < f.materials; ++m) {
-    const ParticleSet& P = sim.groups()[size_t(m)]->particles;
+  for (int m = 0; m < s.materials; ++m) {
+    const ParticleSet& P = local.groups()[size_t(m)]->particles;
     for (size_t p = 0; p < P.size(); ++p) {
       const BlockCoord c = owningBlock(P.x[p], invDx);
       const auto [it, fresh] = ownerIndex.emplace(blockKey(c), owners.size());
@@ -33,71 +96,103 @@ NodeFields scatterNodeFields(const Simulation& sim) {
       owned[it->second].push_back({m, uint32_t(p)});
     }
   }
-  // Every block a stencil can reach, sorted so files do not depend on particle order.
-  std::unordered_map<uint64_t, uint32_t> index;
-  for (const BlockCoord& c : owners)
-    for (int d = 0; d < 8; ++d) {
-      const BlockCoord n{c.x + (d >> 2), c.y + ((d >> 1) & 1), c.z + (d & 1)};
-      if (index.emplace(blockKey(n), 0).second) f.blocks.push_back(n);
-    }
-  std::sort(f.blocks.begin(), f.blocks.end(), [](const BlockCoord& a, const BlockCoord& b) {
-    return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-  });
-  for (size_t b = 0; b < f.blocks.size(); ++b) index[blockKey(f.blocks[b])] = uint32_t(b);
-  f.mass.assign(f.blocks.size() * size_t(f.materials) * kBlockNodes, 0.f);
-  f.momentum.assign(f.blocks.size() * kBlockNodes * 3, 0.f);
-
-  // Scatter each owning block's particles into a padded buffer, then add it to the eight blocks.
-  // Frames are rare, so this stays serial and simple.
-  std::vector<float> buf(size_t(kPadNodes) * size_t(channels));
+  // Each owning block's particles into a padded buffer of integer shares, then into the eight
+  // blocks it overlaps. Frames are rare, so this stays serial and simple.
+  std::unordered_map<uint64_t, size_t> index;
+  std::vector<int64_t> buf(size_t(kPadNodes) * size_t(channels));
   for (size_t o = 0; o < owners.size(); ++o) {
-    std::fill(buf.begin(), buf.end(), 0.f);
+    std::fill(buf.begin(), buf.end(), 0);
     const BlockCoord& oc = owners[o];
     const int origin[3] = {oc.x * kBlockDim, oc.y * kBlockDim, oc.z * kBlockDim};
     for (const Owned& q : owned[o]) {
-      const ParticleSet& P = sim.groups()[size_t(q.material)]->particles;
-      const QuadraticStencil s(P.x[q.particle] * invDx);
+      const ParticleSet& P = local.groups()[size_t(q.material)]->particles;
+      const QuadraticStencil st(P.x[q.particle] * invDx);
       const float mp = float(P.mass[q.particle]);
       const Vec3 mv = P.mass[q.particle] * P.v[q.particle];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-          const float wij = float(s.w[0][i] * s.w[1][j]);
+          const float wij = float(st.w[0][i] * st.w[1][j]);
           for (int k = 0; k < 3; ++k) {
-            const float w = wij * float(s.w[2][k]);
-            float* node = buf.data() + size_t(padIndex(s.base[0] - origin[0] + i, s.base[1] - origin[1] + j,
-                                                       s.base[2] - origin[2] + k)) * size_t(channels);
-            node[q.material] += w * mp;
-            for (int d = 0; d < 3; ++d) node[f.materials + d] += w * float(mv[d]);
+            const float w = wij * float(st.w[2][k]);
+            int64_t* node = buf.data() + size_t(padIndex(st.base[0] - origin[0] + i, st.base[1] - origin[1] + j,
+                                                         st.base[2] - origin[2] + k)) * size_t(channels);
+            node[q.material] += std::llround(double(w * mp) * inv[size_t(q.material)]);
+            for (int d = 0; d < 3; ++d)
+              node[s.materials + d] += std::llround(double(w * float(mv[d])) * inv[size_t(s.materials)]);
           }
         }
     }
-    uint32_t dest[8];
-    for (int d = 0; d < 8; ++d) dest[d] = index.at(blockKey({oc.x + (d >> 2), oc.y + ((d >> 1) & 1), oc.z + (d & 1)}));
+    size_t dest[8];
+    for (int d = 0; d < 8; ++d) dest[d] = blockIndex(s, index, {oc.x + (d >> 2), oc.y + ((d >> 1) & 1), oc.z + (d & 1)});
     forEachPaddedRow([&](int d, int pad, int node, int n) {
-      for (int k = 0; k < n; ++k) {
-        const float* src = buf.data() + size_t(pad + k) * size_t(channels);
-        for (int m = 0; m < f.materials; ++m) f.blockMass(dest[d], m)[node + k] += src[m];
-        float* q = f.blockMomentum(dest[d]) + 3 * (node + k);
-        for (int c = 0; c < 3; ++c) q[c] += src[f.materials + c];
-      }
+      int64_t* to = s.values.data() + dest[d] * size_t(channels) * kBlockNodes;
+      for (int k = 0; k < n; ++k)
+        for (int c = 0; c < channels; ++c) to[size_t(c) * kBlockNodes + size_t(node + k)] += buf[size_t(pad + k) * size_t(channels) + size_t(c)];
     });
   }
-  // Keep only blocks that received mass.
-  size_t kept = 0;
-  for (size_t b = 0; b < f.blocks.size(); ++b) {
-    const float* m0 = f.blockMass(b, 0);
-    if (std::none_of(m0, m0 + size_t(f.materials) * kBlockNodes, [](float v) { return v > 0; })) continue;
-    if (kept != b) {
-      f.blocks[kept] = f.blocks[b];
-      std::copy_n(m0, size_t(f.materials) * kBlockNodes, f.blockMass(kept, 0));
-      std::copy_n(f.blockMomentum(b), kBlockNodes * 3, f.blockMomentum(kept));
-    }
-    ++kept;
+  sortBlocks(s);
+  return s;
+}
+
+void gatherNodeSums(Communicator& comm, NodeSums& s) {
+  const size_t per = size_t(s.channels()) * kBlockNodes;
+  std::vector<char> mine; // the block count, the coordinates, the values
+  if (comm.rank() != 0) {
+    const uint64_t n = s.blocks.size();
+    mine.resize(sizeof n + n * sizeof(BlockCoord) + s.values.size() * sizeof(int64_t));
+    char* p = mine.data();
+    std::memcpy(p, &n, sizeof n), p += sizeof n;
+    if (n) std::memcpy(p, s.blocks.data(), n * sizeof(BlockCoord)), p += n * sizeof(BlockCoord);
+    if (n) std::memcpy(p, s.values.data(), s.values.size() * sizeof(int64_t));
   }
-  f.blocks.resize(kept);
-  f.mass.resize(kept * size_t(f.materials) * kBlockNodes);
-  f.momentum.resize(kept * kBlockNodes * 3);
+  std::unordered_map<uint64_t, size_t> index;
+  if (comm.rank() == 0)
+    for (size_t b = 0; b < s.blocks.size(); ++b) index.emplace(blockKey(s.blocks[b]), b);
+  comm.gatherEach(mine, [](const std::vector<size_t>&) {}, [&](int rank, std::string_view part) {
+    if (rank == 0) return; // rank 0's own sums are in place
+    uint64_t n = 0;
+    if (part.size() < sizeof n) throw std::runtime_error("gatherNodeSums: a part without its block count");
+    std::memcpy(&n, part.data(), sizeof n);
+    if (part.size() != sizeof n + n * (sizeof(BlockCoord) + per * sizeof(int64_t)))
+      throw std::runtime_error("gatherNodeSums: a part that does not hold whole blocks");
+    const char* coords = part.data() + sizeof n;
+    const char* values = coords + n * sizeof(BlockCoord);
+    for (size_t b = 0; b < n; ++b) {
+      BlockCoord c;
+      std::memcpy(&c, coords + b * sizeof c, sizeof c);
+      const size_t at = blockIndex(s, index, c); // may grow s.values: before taking its data
+      int64_t* to = s.values.data() + at * per;
+      for (size_t i = 0; i < per; ++i) {
+        int64_t v;
+        std::memcpy(&v, values + (b * per + i) * sizeof v, sizeof v);
+        to[i] += v;
+      }
+    }
+  });
+  if (comm.rank() == 0) sortBlocks(s);
+}
+
+NodeFields nodeFields(const NodeSums& s) {
+  NodeFields f;
+  f.dx = s.dx;
+  f.materials = s.materials;
+  const size_t per = size_t(s.channels()) * kBlockNodes;
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    const int64_t* v = s.values.data() + b * per;
+    if (std::none_of(v, v + size_t(s.materials) * kBlockNodes, [](int64_t x) { return x > 0; })) continue;
+    f.blocks.push_back(s.blocks[b]);
+    for (int m = 0; m < s.materials; ++m)
+      for (int n = 0; n < kBlockNodes; ++n) f.mass.push_back(float(double(v[size_t(m) * kBlockNodes + size_t(n)]) * s.unit[size_t(m)]));
+    for (int n = 0; n < kBlockNodes; ++n)
+      for (int d = 0; d < 3; ++d)
+        f.momentum.push_back(float(double(v[size_t(s.materials + d) * kBlockNodes + size_t(n)]) * s.unit[size_t(s.materials)]));
+  }
   return f;
+}
+
+NodeFields scatterNodeFields(const Simulation& sim) {
+  SerialCommunicator one;
+  return nodeFields(scatterNodeSums(one, sim));
 }
 
 } // namespace talus

@@ -25,7 +25,7 @@ void OutputSet::addFrameOutputs(const OutputSettings& o, const RunContext& run, 
   if (o.frameInterval <= 0) return;
   const std::string& crs = run.crsWkt;
   if (o.h5Frames) outputs_.push_back(std::make_unique<H5FrameWriter>(outDir, run.materialNames));
-  if (o.vdb && !inPartsOnly) outputs_.push_back(std::make_unique<VdbVolumeWriter>(outDir, crs));
+  if (o.vdb) outputs_.push_back(std::make_unique<VdbVolumeWriter>(outDir, crs));
   if (o.vdbPoints && !inPartsOnly) outputs_.push_back(std::make_unique<VdbPointsWriter>(outDir, crs));
   if (o.ply) outputs_.push_back(std::make_unique<PlyFrameWriter>(outDir));
 }

@@ -121,9 +121,9 @@ struct OutputSettings {
   /// Whether an output reads the particles after every step (the series and the maps; frame
   /// formats read them at frames only). Under MPI ranks this decides the per-step gather.
   bool readsEveryStep() const { return series || maps.enabled; }
-  /// Whether a frame needs every particle in one process: the VDB formats (a volume or a point
-  /// grid is built from all of them). HDF5 and PLY frames are written in parts (framesInParts).
-  bool framesNeedEveryParticle() const { return frameInterval > 0 && (vdb || vdbPoints); }
+  /// Whether a frame needs every particle in one process: VDB points (a point grid is built
+  /// from all of them). HDF5, PLY and VDB volume frames are written in parts (framesInParts).
+  bool framesNeedEveryParticle() const { return frameInterval > 0 && vdbPoints; }
 };
 
 } // namespace talus

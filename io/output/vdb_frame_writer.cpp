@@ -60,11 +60,9 @@ void writeFile(const std::string& path, const openvdb::GridPtrVec& grids, const 
   });
 }
 
-} // namespace
-
-void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::string& crsWkt) {
+/// The volume frame of node fields `f` scattered from `sim`'s particles (or every process's).
+void writeVolumeVdb(const std::string& path, const NodeFields& f, const Simulation& sim, const std::string& crsWkt) {
   initOpenVdb();
-  const NodeFields f = scatterNodeFields(sim);
   const double dx3 = f.dx * f.dx * f.dx;
   const auto xf = worldTransform(sim);
   const int nm = f.materials;
@@ -136,6 +134,12 @@ void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::s
   describe(*velocity, "velocity", "m/s", sim.time());
   grids.push_back(velocity);
   writeFile(path, grids, fileMetadata(sim, crsWkt));
+}
+
+} // namespace
+
+void writeVolumeVdb(const std::string& path, const Simulation& sim, const std::string& crsWkt) {
+  writeVolumeVdb(path, scatterNodeFields(sim), sim, crsWkt);
 }
 
 VolumeFrameInfo readVolumeFrameInfo(const std::string& path) {
@@ -214,9 +218,24 @@ VdbVolumeWriter::VdbVolumeWriter(std::string outDir, std::string crsWkt)
 }
 
 void VdbVolumeWriter::onFrame(const Simulation& sim, int index) {
+  SerialCommunicator one;
+  if (auto failure = onFrameParts(one, sim, index)) throw *failure;
+}
+
+std::optional<WriteError> VdbVolumeWriter::onFrameParts(Communicator& comm, const Simulation& local, int index) {
+  // Every process scatters its own particles; rank 0 adds their blocks (exact integer sums) and
+  // writes the file. No process holds every particle.
+  NodeSums sums = scatterNodeSums(comm, local);
+  gatherNodeSums(comm, sums);
+  if (comm.rank() != 0) return std::nullopt;
   const std::string rel = frameFileName("volume", index, "vdb");
-  writeVolumeVdb((std::filesystem::path(outDir_) / rel).string(), sim, crsWkt_);
+  try {
+    writeVolumeVdb((std::filesystem::path(outDir_) / rel).string(), nodeFields(sums), local, crsWkt_);
+  } catch (const WriteError& e) {
+    return e;
+  }
   recordFile(rel);
+  return std::nullopt;
 }
 
 VdbPointsWriter::VdbPointsWriter(std::string outDir, std::string crsWkt)

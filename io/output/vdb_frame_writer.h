@@ -39,6 +39,8 @@ public:
   VdbVolumeWriter(std::string outDir, std::string crsWkt);
   std::string name() const override { return "vdb_frames"; }
   void onFrame(const Simulation& sim, int index) override;
+  bool framesInParts() const override { return true; }
+  std::optional<WriteError> onFrameParts(Communicator& comm, const Simulation& local, int index) override;
 
 private:
   std::string outDir_, crsWkt_;
