@@ -8,6 +8,8 @@
 #include <cstring>
 #include <numeric>
 #include <tuple>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <unordered_map>
 
 namespace talus {
@@ -96,12 +98,35 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
       owned[it->second].push_back({m, uint32_t(p)});
     }
   }
-  // Each owning block's particles into a padded buffer of integer shares, then into the eight
-  // blocks it overlaps. Frames are rare, so this stays serial and simple.
+  // Every block a stencil can reach, sorted, and their sums allocated once (grown block by block,
+  // the reallocations and their page faults took most of a frame).
   std::unordered_map<uint64_t, size_t> index;
-  std::vector<int64_t> buf(size_t(kPadNodes) * size_t(channels));
-  for (size_t o = 0; o < owners.size(); ++o) {
-    std::fill(buf.begin(), buf.end(), 0);
+  for (const BlockCoord& c : owners)
+    for (int d = 0; d < 8; ++d) {
+      const BlockCoord n{c.x + (d >> 2), c.y + ((d >> 1) & 1), c.z + (d & 1)};
+      if (index.emplace(blockKey(n), 0).second) s.blocks.push_back(n);
+    }
+  std::sort(s.blocks.begin(), s.blocks.end(), coordLess);
+  for (size_t b = 0; b < s.blocks.size(); ++b) index[blockKey(s.blocks[b])] = b;
+  s.values.resize(s.blocks.size() * size_t(channels) * kBlockNodes);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, s.values.size(), size_t(1) << 16),
+                    [&](const auto& r) { std::fill(s.values.begin() + ptrdiff_t(r.begin()), s.values.begin() + ptrdiff_t(r.end()), 0); });
+  // Rounded to the nearest unit (ties up). Truncation and a correction: the default build's
+  // SSE2 has no rounding instruction, and std::floor is a call.
+  auto fixed = [&](float v, size_t channel) {
+    const double x = double(v) * inv[channel] + 0.5;
+    const int64_t t = int64_t(x);
+    return double(t) > x ? t - 1 : t;
+  };
+  // Each owning block's particles into a padded float buffer, in their order (which is the same
+  // at any rank count: a block's particles are on one rank, in one process's order), then its
+  // shares as integers into the eight blocks it overlaps: one rounding per node and owner, not
+  // per particle. Integer sums do not depend on their order, so the owners run on every thread
+  // and add atomically, with the same bits at any thread count.
+  tbb::enumerable_thread_specific<std::vector<float>> buffers(size_t(kPadNodes) * size_t(channels));
+  tbb::parallel_for(size_t(0), owners.size(), [&](size_t o) {
+    std::vector<float>& buf = buffers.local();
+    std::fill(buf.begin(), buf.end(), 0.f);
     const BlockCoord& oc = owners[o];
     const int origin[3] = {oc.x * kBlockDim, oc.y * kBlockDim, oc.z * kBlockDim};
     for (const Owned& q : owned[o]) {
@@ -114,23 +139,26 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
           const float wij = float(st.w[0][i] * st.w[1][j]);
           for (int k = 0; k < 3; ++k) {
             const float w = wij * float(st.w[2][k]);
-            int64_t* node = buf.data() + size_t(padIndex(st.base[0] - origin[0] + i, st.base[1] - origin[1] + j,
-                                                         st.base[2] - origin[2] + k)) * size_t(channels);
-            node[q.material] += std::llround(double(w * mp) * inv[size_t(q.material)]);
-            for (int d = 0; d < 3; ++d)
-              node[s.materials + d] += std::llround(double(w * float(mv[d])) * inv[size_t(s.materials)]);
+            float* node = buf.data() + size_t(padIndex(st.base[0] - origin[0] + i, st.base[1] - origin[1] + j,
+                                                       st.base[2] - origin[2] + k)) * size_t(channels);
+            node[q.material] += w * mp;
+            for (int d = 0; d < 3; ++d) node[s.materials + d] += w * float(mv[d]);
           }
         }
     }
     size_t dest[8];
-    for (int d = 0; d < 8; ++d) dest[d] = blockIndex(s, index, {oc.x + (d >> 2), oc.y + ((d >> 1) & 1), oc.z + (d & 1)});
+    for (int d = 0; d < 8; ++d) dest[d] = index.at(blockKey({oc.x + (d >> 2), oc.y + ((d >> 1) & 1), oc.z + (d & 1)}));
     forEachPaddedRow([&](int d, int pad, int node, int n) {
       int64_t* to = s.values.data() + dest[d] * size_t(channels) * kBlockNodes;
       for (int k = 0; k < n; ++k)
-        for (int c = 0; c < channels; ++c) to[size_t(c) * kBlockNodes + size_t(node + k)] += buf[size_t(pad + k) * size_t(channels) + size_t(c)];
+        for (int c = 0; c < channels; ++c) {
+          const float v = buf[size_t(pad + k) * size_t(channels) + size_t(c)];
+          if (v != 0.f)
+            __atomic_fetch_add(to + size_t(c) * kBlockNodes + size_t(node + k), fixed(v, size_t(std::min(c, s.materials))),
+                               __ATOMIC_RELAXED);
+        }
     });
-  }
-  sortBlocks(s);
+  });
   return s;
 }
 
@@ -146,8 +174,9 @@ void gatherNodeSums(Communicator& comm, NodeSums& s) {
     if (n) std::memcpy(p, s.values.data(), s.values.size() * sizeof(int64_t));
   }
   std::unordered_map<uint64_t, size_t> index;
-  if (comm.rank() == 0)
+  if (comm.rank() == 0 && comm.size() > 1)
     for (size_t b = 0; b < s.blocks.size(); ++b) index.emplace(blockKey(s.blocks[b]), b);
+  const size_t own = s.blocks.size();
   comm.gatherEach(mine, [](const std::vector<size_t>&) {}, [&](int rank, std::string_view part) {
     if (rank == 0) return; // rank 0's own sums are in place
     uint64_t n = 0;
@@ -169,7 +198,7 @@ void gatherNodeSums(Communicator& comm, NodeSums& s) {
       }
     }
   });
-  if (comm.rank() == 0) sortBlocks(s);
+  if (comm.rank() == 0 && s.blocks.size() > own) sortBlocks(s); // another rank's blocks were appended
 }
 
 NodeFields nodeFields(const NodeSums& s) {
