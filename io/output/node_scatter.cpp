@@ -118,15 +118,14 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
     const int64_t t = int64_t(x);
     return double(t) > x ? t - 1 : t;
   };
-  // Each owning block's particles into a padded float buffer, in their order (which is the same
-  // at any rank count: a block's particles are on one rank, in one process's order), then its
-  // shares as integers into the eight blocks it overlaps: one rounding per node and owner, not
-  // per particle. Integer sums do not depend on their order, so the owners run on every thread
-  // and add atomically, with the same bits at any thread count.
-  tbb::enumerable_thread_specific<std::vector<float>> buffers(size_t(kPadNodes) * size_t(channels));
+  // Each owning block's particles into a padded buffer of integer shares, each particle's share
+  // rounded on its own (a block's particles may lie on two ranks at a frame: they migrate at the
+  // next step), then into the eight blocks it overlaps. Integer sums do not depend on their
+  // order, so the owners run on every thread and add atomically, the same bits at any count.
+  tbb::enumerable_thread_specific<std::vector<int64_t>> buffers(size_t(kPadNodes) * size_t(channels));
   tbb::parallel_for(size_t(0), owners.size(), [&](size_t o) {
-    std::vector<float>& buf = buffers.local();
-    std::fill(buf.begin(), buf.end(), 0.f);
+    std::vector<int64_t>& buf = buffers.local();
+    std::fill(buf.begin(), buf.end(), 0);
     const BlockCoord& oc = owners[o];
     const int origin[3] = {oc.x * kBlockDim, oc.y * kBlockDim, oc.z * kBlockDim};
     for (const Owned& q : owned[o]) {
@@ -139,10 +138,10 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
           const float wij = float(st.w[0][i] * st.w[1][j]);
           for (int k = 0; k < 3; ++k) {
             const float w = wij * float(st.w[2][k]);
-            float* node = buf.data() + size_t(padIndex(st.base[0] - origin[0] + i, st.base[1] - origin[1] + j,
-                                                       st.base[2] - origin[2] + k)) * size_t(channels);
-            node[q.material] += w * mp;
-            for (int d = 0; d < 3; ++d) node[s.materials + d] += w * float(mv[d]);
+            int64_t* node = buf.data() + size_t(padIndex(st.base[0] - origin[0] + i, st.base[1] - origin[1] + j,
+                                                         st.base[2] - origin[2] + k)) * size_t(channels);
+            node[q.material] += fixed(w * mp, size_t(q.material));
+            for (int d = 0; d < 3; ++d) node[s.materials + d] += fixed(w * float(mv[d]), size_t(s.materials));
           }
         }
     }
@@ -152,10 +151,8 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
       int64_t* to = s.values.data() + dest[d] * size_t(channels) * kBlockNodes;
       for (int k = 0; k < n; ++k)
         for (int c = 0; c < channels; ++c) {
-          const float v = buf[size_t(pad + k) * size_t(channels) + size_t(c)];
-          if (v != 0.f)
-            __atomic_fetch_add(to + size_t(c) * kBlockNodes + size_t(node + k), fixed(v, size_t(std::min(c, s.materials))),
-                               __ATOMIC_RELAXED);
+          const int64_t v = buf[size_t(pad + k) * size_t(channels) + size_t(c)];
+          if (v) __atomic_fetch_add(to + size_t(c) * kBlockNodes + size_t(node + k), v, __ATOMIC_RELAXED);
         }
     });
   });
