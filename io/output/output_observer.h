@@ -10,7 +10,6 @@
 #include "io/output/step_parts.h"
 
 #include <optional>
-
 #include <string>
 #include <vector>
 

@@ -60,7 +60,7 @@ struct Run::State {
   std::unique_ptr<tbb::global_control> threadLimit;
   std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
   /// Every rank writes its own particles into files rank 0 lists or lays out (checkpoint parts,
-  /// the HDF5 and PLY frames): under ranks that all see the output folder.
+  /// frames): under ranks that all see the output folder.
   bool writesInParts = false;
   Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
   RunInfo info;
@@ -142,15 +142,15 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
       s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
       s.outputs->start(*s.view);
     });
-    // Each rank writes its part of a checkpoint where every rank sees the output folder.
+    // Each rank writes its part of a checkpoint or frame where every rank sees the output folder.
     s.writesInParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
     if (s.ranks.active() && !s.writesInParts && s.ranks.root()) {
-      s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints are "
-                             "written by rank 0 with every particle, not in parts by each rank");
+      s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints "
+                             "and frames are written by rank 0 with every particle, not in parts by each rank");
       std::fprintf(stderr, "talus: %s\n", s.info.notes.back().c_str());
     }
-    // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts).
-    // and write their rows of the frames in parts.
+    // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts) and
+    // write their parts of the frames.
     if (!s.ranks.root())
       s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_,
                         s.writesInParts ? res_.outDir : std::string());
@@ -223,8 +223,9 @@ bool Run::step() {
 
 void Run::writeFrame() {
   State& s = *s_;
-  // Each rank writes its rows of the HDF5 and PLY frames; rank 0 gathers every particle only for
-  // the VDB formats, or when the ranks do not share the output folder.
+  // Each rank writes its rows of the HDF5 and PLY frames and scatters its particles for the VDB
+  // volume; rank 0 gathers every particle only for VDB points, or when the ranks do not share
+  // the output folder.
   std::optional<WriteError> failure;
   if (s.writesInParts) failure = s.outputs->frameParts(s.ranks.comm(), *sim_, s.frame);
   const bool whole = !s.writesInParts || s.output.framesNeedEveryParticle();
