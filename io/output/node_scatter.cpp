@@ -69,6 +69,48 @@ void sortBlocks(NodeSums& s) {
   s.blocks.swap(blocks), s.values.swap(values);
 }
 
+/// Particles by owning block (the block of their stencil's base node), in particle order.
+struct Owners {
+  struct Owned {
+    int material;
+    uint32_t particle;
+  };
+  std::vector<BlockCoord> blocks;
+  std::vector<std::vector<Owned>> particles; ///< per block
+};
+Owners groupByOwner(const Simulation& local, Real invDx) {
+  Owners o;
+  std::unordered_map<uint64_t, size_t> index;
+  for (int m = 0; m < int(local.groups().size()); ++m) {
+    const ParticleSet& P = local.groups()[size_t(m)]->particles;
+    for (size_t p = 0; p < P.size(); ++p) {
+      const BlockCoord c = owningBlock(P.x[p], invDx);
+      const auto [it, fresh] = index.emplace(blockKey(c), o.blocks.size());
+      if (fresh) o.blocks.push_back(c), o.particles.emplace_back();
+      o.particles[it->second].push_back({m, uint32_t(p)});
+    }
+  }
+  return o;
+}
+
+/// Every block the owners' stencils reach, sorted, into `s` with zeroed sums allocated once
+/// (grown block by block, the reallocations and their page faults took most of a frame); their
+/// indices by key.
+std::unordered_map<uint64_t, size_t> allocateReach(NodeSums& s, const std::vector<BlockCoord>& owners) {
+  std::unordered_map<uint64_t, size_t> index;
+  for (const BlockCoord& c : owners)
+    for (int d = 0; d < 8; ++d) {
+      const BlockCoord n{c.x + (d >> 2), c.y + ((d >> 1) & 1), c.z + (d & 1)};
+      if (index.emplace(blockKey(n), 0).second) s.blocks.push_back(n);
+    }
+  std::sort(s.blocks.begin(), s.blocks.end(), coordLess);
+  for (size_t b = 0; b < s.blocks.size(); ++b) index[blockKey(s.blocks[b])] = b;
+  s.values.resize(s.blocks.size() * size_t(s.channels()) * kBlockNodes);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, s.values.size(), size_t(1) << 16),
+                    [&](const auto& r) { std::fill(s.values.begin() + ptrdiff_t(r.begin()), s.values.begin() + ptrdiff_t(r.end()), 0); });
+  return index;
+}
+
 } // namespace
 
 NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
@@ -81,36 +123,8 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
   std::vector<double> inv(s.unit.size());
   for (size_t c = 0; c < inv.size(); ++c) inv[c] = 1.0 / s.unit[c];
 
-  // Particles by owning block (the block of their stencil's base node).
-  struct Owned {
-    int material;
-    uint32_t particle;
-  };
-  std::unordered_map<uint64_t, size_t> ownerIndex;
-  std::vector<BlockCoord> owners;
-  std::vector<std::vector<Owned>> owned;
-  for (int m = 0; m < s.materials; ++m) {
-    const ParticleSet& P = local.groups()[size_t(m)]->particles;
-    for (size_t p = 0; p < P.size(); ++p) {
-      const BlockCoord c = owningBlock(P.x[p], invDx);
-      const auto [it, fresh] = ownerIndex.emplace(blockKey(c), owners.size());
-      if (fresh) owners.push_back(c), owned.emplace_back();
-      owned[it->second].push_back({m, uint32_t(p)});
-    }
-  }
-  // Every block a stencil can reach, sorted, and their sums allocated once (grown block by block,
-  // the reallocations and their page faults took most of a frame).
-  std::unordered_map<uint64_t, size_t> index;
-  for (const BlockCoord& c : owners)
-    for (int d = 0; d < 8; ++d) {
-      const BlockCoord n{c.x + (d >> 2), c.y + ((d >> 1) & 1), c.z + (d & 1)};
-      if (index.emplace(blockKey(n), 0).second) s.blocks.push_back(n);
-    }
-  std::sort(s.blocks.begin(), s.blocks.end(), coordLess);
-  for (size_t b = 0; b < s.blocks.size(); ++b) index[blockKey(s.blocks[b])] = b;
-  s.values.resize(s.blocks.size() * size_t(channels) * kBlockNodes);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, s.values.size(), size_t(1) << 16),
-                    [&](const auto& r) { std::fill(s.values.begin() + ptrdiff_t(r.begin()), s.values.begin() + ptrdiff_t(r.end()), 0); });
+  const Owners owners = groupByOwner(local, invDx);
+  const std::unordered_map<uint64_t, size_t> index = allocateReach(s, owners.blocks);
   // Rounded to the nearest unit (ties up). Truncation and a correction: the default build's
   // SSE2 has no rounding instruction, and std::floor is a call.
   auto fixed = [&](float v, size_t channel) {
@@ -123,12 +137,12 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
   // next step), then into the eight blocks it overlaps. Integer sums do not depend on their
   // order, so the owners run on every thread and add atomically, the same bits at any count.
   tbb::enumerable_thread_specific<std::vector<int64_t>> buffers(size_t(kPadNodes) * size_t(channels));
-  tbb::parallel_for(size_t(0), owners.size(), [&](size_t o) {
+  tbb::parallel_for(size_t(0), owners.blocks.size(), [&](size_t o) {
     std::vector<int64_t>& buf = buffers.local();
     std::fill(buf.begin(), buf.end(), 0);
-    const BlockCoord& oc = owners[o];
+    const BlockCoord& oc = owners.blocks[o];
     const int origin[3] = {oc.x * kBlockDim, oc.y * kBlockDim, oc.z * kBlockDim};
-    for (const Owned& q : owned[o]) {
+    for (const Owners::Owned& q : owners.particles[o]) {
       const ParticleSet& P = local.groups()[size_t(q.material)]->particles;
       const QuadraticStencil st(P.x[q.particle] * invDx);
       const float mp = float(P.mass[q.particle]);
