@@ -8,6 +8,7 @@
 #include "io/run/checkpoint_parts.h"
 #include "io/run/progress_bar.h"
 #include "io/run/run_ranks.h"
+#include "io/run/run_state.h"
 #include "io/run/run_signals.h"
 #include "io/run/run_summary.h"
 
@@ -27,12 +28,6 @@ namespace talus {
 namespace fs = std::filesystem;
 
 namespace {
-/// The ranks' buffers in one gathered block, `counts` bytes each (none when nothing was gathered).
-std::vector<std::string_view> views(const std::vector<char>& all, const std::vector<size_t>& counts) {
-  std::vector<std::string_view> v;
-  for (size_t r = 0, at = 0; r < counts.size(); at += counts[r++]) v.emplace_back(all.data() + at, counts[r]);
-  return v;
-}
 
 /// Creating a folder fails like writing a file (full, read-only, removed): report it as one.
 void makeDirectories(const std::string& dir) {
@@ -42,63 +37,6 @@ void makeDirectories(const std::string& dir) {
 }
 } // namespace
 
-/// Everything of the run besides the simulation: the scene's settings, the outputs, the view
-/// rank 0 writes from, the clocks of frames and checkpoints.
-struct Run::State {
-  State(const SceneSetup& scene, const RunOptions& o)
-      : opt(o), ranks(o.ranks), output(scene.output), materialNames(scene.materialNames),
-        identity{scene.hash, scene.stateKeys}, interval(scene.output.frameInterval),
-        checkpointEvery(scene.output.checkpointInterval < 0 ? scene.endTime / 10
-                                                            : scene.output.checkpointInterval) {}
-
-  RunOptions opt;
-  RunRanks ranks;
-  OutputSettings output;
-  std::vector<std::string> materialNames;
-  CheckpointIdentity identity;
-  int threads = 1; ///< TBB threads of this process
-  std::unique_ptr<tbb::global_control> threadLimit;
-  std::unique_ptr<Simulation> viewed; ///< rank 0's whole view under ranks (else null)
-  /// Every rank writes its own particles into files rank 0 lists or lays out (checkpoint parts,
-  /// frames): under ranks that all see the output folder.
-  bool writesInParts = false;
-  Simulation* view = nullptr;         ///< what outputs read: viewed, or the simulation itself
-  RunInfo info;
-  std::optional<OutputSet> outputs;
-  std::optional<RunSignals> signals;
-  std::unique_ptr<ProgressBar> bar;
-  RootLoadBalance balance;
-  std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
-  std::string summaryFile, checkpointFile;
-  int frame = 0;
-  double interval, checkpointEvery;
-  double nextCheckpoint = std::numeric_limits<double>::infinity();
-
-  /// Collective under ranks: rank 0's view gets every particle, for files written from it; the
-  /// view holds them only until releaseView, so between writes rank 0 holds its own share.
-  void gatherView(Simulation& sim) {
-    if (!ranks.active()) return;
-    sim.gatherInto(viewed.get());
-    ++info.wholeGathers;
-  }
-  void releaseView() {
-    if (viewed) viewed->releaseParticles();
-  }
-  /// Runs f on `cores` threads when that is more than the run's own: the cores the other ranks
-  /// lend rank 0 for the end's files (RunRanks::onRootWithNodeCores).
-  template <class F> void withThreads(int cores, F&& f) {
-    if (cores <= threads) return f();
-    auto limit = [](int n) { return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(n)); };
-    threadLimit = limit(cores); // the old limit goes after the new one is in force
-    struct Back {
-      State& s;
-      std::unique_ptr<tbb::global_control> (*limit)(int);
-      ~Back() { s.threadLimit = limit(s.threads); }
-    } back{*this, +limit};
-    // Another limit in force (a caller's own, as the tests keep) still holds.
-    tbb::task_arena(int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))).execute(f);
-  }
-};
 
 Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>(scene, opt)) {
   State& s = *s_;
@@ -271,81 +209,6 @@ void Run::afterStep() {
   }
   // At the end time the run is complete: its final outputs are quicker than a resume.
   if (flags.signal && sim_->time() < endTime_) interrupt(flags.signal);
-}
-
-Run::Agreed Run::stepOnRanks(Agreed mine) {
-  State& s = *s_;
-  OutputSet& out = *s.outputs;
-  const bool outputs = s.output.readsEveryStep();
-  // What this process adds up from its own particles every step, and its maxima (the units of
-  // the parts' fixed-point sums).
-  double dt = 0;
-  PartBounds own;
-  if (outputs) {
-    dt = out.stepTime(*sim_);
-    out.stepLocal(*sim_, dt);
-    own = PartBounds::of(*sim_);
-  }
-  // One reduction for all the ranks agree on after a step: which outputs rank 0 needs, the
-  // maxima, and the signal flags (a maximum over the ranks, so a signal that reached one rank
-  // stops every rank at the same step).
-  const bool askDue = outputs && s.ranks.root();
-  double v[6] = {askDue ? -double(out.partsDue(*sim_)) : 0.0, -own.maxMass, -own.maxSpeed2, -own.maxCoord,
-                 -double(mine.checkpoint), -double(mine.signal)};
-  s.ranks.comm().minimum(v, 6);
-  if (outputs) stepOutputsOnRanks(dt, uint32_t(-v[0]), PartBounds{-v[1], -v[2], -v[3]});
-  return {int(-v[4]), int(-v[5])};
-}
-
-void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
-  State& s = *s_;
-  OutputSet& out = *s.outputs;
-  Communicator& comm = s.ranks.comm();
-  const bool root = s.ranks.root();
-  // One all-to-all: rank 0 gets every part; the maps' cells go to the process owning them, so
-  // no process adds every cell (OutputObserver::partsByOwner).
-  const int n = comm.size();
-  std::vector<std::vector<char>> sent = due ? out.parts(*sim_, due, b, comm.rank(), n) : std::vector<std::vector<char>>();
-  const std::vector<std::vector<char>> got = due ? comm.exchange(sent) : std::vector<std::vector<char>>();
-  // Not the collectives: their time includes waiting for slower ranks.
-  const auto o0 = std::chrono::steady_clock::now();
-  std::vector<std::string_view> buffers;
-  for (const auto& g : got) buffers.emplace_back(g.data(), g.size());
-  out.mergeParts(*sim_, dt, due, b, buffers);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count();
-  // Rank 0 gathers the owned cells only when it writes them (a film frame).
-  std::vector<char> results;
-  std::vector<size_t> counts;
-  if (out.resultsDue(n)) results = comm.gather(root ? std::vector<char>() : out.results(false, n), counts);
-  s.ranks.onRoot([&] {
-    const auto o1 = std::chrono::steady_clock::now();
-    out.mergeResults(*sim_, false, views(results, counts), n);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - o1).count();
-    s.balance.addOutputSeconds(seconds);
-  });
-}
-
-void Run::shareOutputState() {
-  State& s = *s_;
-  Communicator& comm = s.ranks.comm();
-  const int n = comm.size();
-  if (!s.outputs->sharesState(n)) return; // the same answer on every rank: the scene's outputs
-  std::vector<std::vector<char>> send(static_cast<size_t>(n));
-  if (s.ranks.root()) {
-    const std::vector<char> state = s.outputs->sharedState(n);
-    for (int r = 1; r < n; ++r) send[size_t(r)] = state;
-  }
-  const std::vector<std::vector<char>> got = comm.exchange(send);
-  if (!s.ranks.root()) s.outputs->takeSharedState(std::string_view(got[0].data(), got[0].size()), n);
-}
-
-void Run::gatherOutputState() {
-  State& s = *s_;
-  if (!s.ranks.active() || !s.outputs) return;
-  Communicator& comm = s.ranks.comm();
-  std::vector<size_t> counts;
-  const std::vector<char> all = comm.gather(s.ranks.root() ? std::vector<char>() : s.outputs->results(true, comm.size()), counts);
-  s.ranks.onRoot([&] { s.outputs->mergeResults(*s.view, true, views(all, counts), comm.size()); });
 }
 
 void Run::checkpoint() {
