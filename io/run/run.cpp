@@ -28,7 +28,6 @@ namespace talus {
 namespace fs = std::filesystem;
 
 namespace {
-
 /// Creating a folder fails like writing a file (full, read-only, removed): report it as one.
 void makeDirectories(const std::string& dir) {
   std::error_code ec;
