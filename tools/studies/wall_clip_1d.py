@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The plate's rebound (tools/studies/impact_rebound.py) in one dimension, outside the engine.
 
-A 60-line MLS-MPM of an elastic bar (h = 0.12 m, E = 1 MPa, 1620 kg/m3, two particles per cell,
+A short MLS-MPM of an elastic bar (h = 0.12 m, E = 1 MPa, 1620 kg/m3, two particles per cell,
 quadratic B-splines, APIC's affine velocity, the stress fused into P2G as the engine does)
 striking a wall at 1.82 m/s: the wall node's normal velocity is set to zero where it points into
 the wall, as engine/contact_laws.h's slip law does. Printed per h/dx, at the CFL step (0.4) and at
