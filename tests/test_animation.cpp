@@ -1,5 +1,6 @@
 // The run's film (io/output/animation.h): frame rasters that hold the flow's volume, a film with
-// one picture per raster, `talus animate` with other choices, and a run without FFmpeg.
+// one picture per raster, `talus animate` with other choices, a film whose encoder fails once, and
+// a run without FFmpeg.
 #include "process_support.h"
 #include "test_support.h"
 
@@ -103,4 +104,25 @@ TEST(Animation, WithoutFfmpegTheRunCompletesAndSaysWhereTheDrawnFramesAre) {
   EXPECT_FALSE(fs::exists(dir + "/run/animation.mp4"));
   EXPECT_EQ(test::shell("PATH=/nonexistent \"" + kBinary + "\" animate " + dir + "/run", log), 1);
   EXPECT_EQ(log, "talus: error: ffmpeg not found (apt-get install ffmpeg): the drawn frames are in animation/png/\n");
+}
+
+TEST(Animation, AFilmWhoseEncoderFailsOnceIsEncodedAgainAlone) {
+  // An ffmpeg that fails its first call (the MP4's, started first) and is the real one after.
+  const std::string dir = test::tempDir("animation_encoder_fails");
+  std::string real;
+  if (test::shell("command -v ffmpeg", real) != 0) GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg)";
+  real.erase(real.find_last_not_of('\n') + 1);
+  fs::create_directories(dir + "/bin");
+  std::ofstream(dir + "/bin/ffmpeg") << "#!/bin/sh\nif mkdir '" << dir << "/failed_once' 2>/dev/null; then exit 1; fi\nexec '"
+                                     << real << "' \"$@\"\n";
+  fs::permissions(dir + "/bin/ffmpeg", fs::perms::owner_all);
+  std::string log;
+  ASSERT_EQ(test::shell("\"" + kBinary + "\"" + kRun + dir + "/run --set output.report=false", log), 0) << log;
+  fs::remove(dir + "/run/animation.mp4");
+  ASSERT_EQ(test::shell("PATH=" + dir + "/bin:$PATH \"" + kBinary + "\" animate " + dir + "/run", log), 0) << log;
+  EXPECT_NE(log.find("talus animate: ffmpeg failed making animation.mp4; encoded again alone"), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(dir + "/failed_once"));
+  if (test::shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
+                      dir + "/run/animation.mp4", log) != 0) GTEST_SKIP() << "ffprobe is not installed (apt-get install ffmpeg)";
+  EXPECT_EQ(log, "11\n") << "a picture for each of the 11 frames (0 to 1 s every 0.1 s)";
 }

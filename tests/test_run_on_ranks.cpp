@@ -47,6 +47,15 @@ std::string comparable(const fs::path& p) {
   return b;
 }
 
+/// What a run in `dir` says of the files it could not make: summary.json's "animation" (the
+/// film's outcome) and ffmpeg's messages when it failed.
+std::string why(const std::string& dir) {
+  const std::string summary = bytes(fs::path(dir) / "summary.json");
+  const size_t at = summary.find("\"animation\"");
+  std::string said = at == std::string::npos ? "" : summary.substr(at, summary.find('\n', at) - at);
+  return "\n(the run's summary: " + said + "; ffmpeg.log: " + bytes(fs::path(dir) / "animation" / "ffmpeg.log") + ")";
+}
+
 /// Every file of a against b's, except those that differ between two one-process runs too
 /// (summary.json's wall times and report.html, which shows them), and the checkpoint: on ranks
 /// it lists each rank's part (checkpoint_parts/), so the tests compare what it resumes to instead.
@@ -56,7 +65,7 @@ void expectSameFiles(const std::string& a, const std::string& b) {
     if (!e.is_regular_file()) continue;
     const fs::path rel = fs::relative(e.path(), a);
     if (rel == "summary.json" || rel == "report.html" || rel == "checkpoint.h5") continue;
-    ASSERT_TRUE(fs::exists(fs::path(b) / rel)) << rel;
+    ASSERT_TRUE(fs::exists(fs::path(b) / rel)) << rel << why(b);
     EXPECT_TRUE(comparable(e.path()) == comparable(fs::path(b) / rel)) << rel << " differs";
     ++compared;
   }

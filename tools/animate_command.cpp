@@ -28,6 +28,8 @@ int runAnimateCommand(const AnimateOptions& o) {
     std::fprintf(stderr, "talus: error: %s\n", r.problem.c_str());
     return 1;
   }
+  if (!r.retried.empty())
+    std::fprintf(stderr, "talus animate: ffmpeg failed making %s; encoded again alone\n", r.retried.c_str());
   for (const auto& f : r.files)
     std::fprintf(stderr, "talus animate: %d frames of %s -> %s\n", r.frames, a.style.quantity.c_str(),
                  (std::filesystem::path(a.dir) / f).c_str());

@@ -173,9 +173,39 @@ struct IgnoreSigpipe {
   ~IgnoreSigpipe() { sigaction(SIGPIPE, &old, nullptr); }
 };
 
-/// Draws the `n` pictures with `draw` (eight at a time, side by side) and feeds them raw to two
-/// ffmpeg processes at once, one per film (no PNG in between: encoding and decoding them was
-/// most of the film's cost). The films made go to r.files, a failure to r.problem.
+/// One film: its file name and its ffmpeg filter.
+struct Film {
+  std::string name, filter;
+};
+
+/// Draws the `n` pictures with `draw` (eight at a time, side by side) and feeds them raw to one
+/// ffmpeg process per film, all at once (no PNG in between: encoding and decoding them was most
+/// of the films' cost). Whether each film was made, in `films`' order.
+std::vector<bool> encode(const std::string& exe, const std::string& dir, int fps, size_t n,
+                         const std::function<MapImage(size_t)>& draw, const MapImage& first,
+                         const std::vector<Film>& films, const std::string& log) {
+  IgnoreSigpipe quiet;
+  std::vector<Encoder> enc;
+  for (const Film& f : films)
+    enc.push_back(startEncoder(exe, first.width(), first.height(), fps, f.filter, (fs::path(dir) / f.name).string(), log));
+  constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
+  for (size_t b = 0; b < n; b += kBatch) {
+    std::vector<MapImage> batch(std::min(kBatch, n - b));
+    tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
+    for (const MapImage& m : batch)
+      for (Encoder& e : enc)
+        if (m.width() == first.width() && m.height() == first.height()) feed(e, m.pixels(), m.bytes());
+  }
+  std::vector<bool> made;
+  for (Encoder& e : enc) made.push_back(finish(e));
+  return made;
+}
+
+/// The MP4 and the GIF, encoded side by side; a film whose encoder failed is encoded once more
+/// alone (CI once saw a run's MP4 missing beside a busy test, and six reruns under load did not
+/// see it again: a fault of the moment, such as a thread ffmpeg could not start, should not cost
+/// the film; summary.json says which was encoded twice). The films made go
+/// to r.files, a failure to r.problem.
 void encodeFilms(const std::string& exe, const std::string& dir, const AnimationStyle& style, size_t n,
                  const std::function<MapImage(size_t)>& draw, AnimationResult& r) {
   const MapImage first = draw(0);
@@ -186,29 +216,16 @@ void encodeFilms(const std::string& exe, const std::string& dir, const Animation
                                            : "pad=ceil(iw/2)*2:ceil(ih/2)*2:color=white";
   const std::string gif = "scale=" + std::to_string(style.gifWidth) +
                           ":-1:flags=lanczos,split[a][b];[a]palettegen=max_colors=128[p];[b][p]paletteuse=dither=bayer";
-  const std::pair<std::string, std::string> films[2] = {{"animation.mp4", size}, {"animation.gif", gif}};
-  IgnoreSigpipe quiet;
-  Encoder enc[2];
-  for (int k = 0; k < 2; ++k)
-    enc[k] = startEncoder(exe, first.width(), first.height(), style.fps, films[k].second,
-                          (fs::path(dir) / films[k].first).string(), log);
-  constexpr size_t kBatch = 8; // pictures drawn side by side, then written in order
-  for (size_t b = 0; b < n; b += kBatch) {
-    std::vector<MapImage> batch(std::min(kBatch, n - b));
-    tbb::parallel_for(size_t(0), batch.size(), [&](size_t i) { batch[i] = b + i == 0 ? first : draw(b + i); });
-    for (const MapImage& m : batch)
-      for (Encoder& e : enc)
-        if (m.width() == first.width() && m.height() == first.height()) feed(e, m.pixels(), m.bytes());
-  }
-  bool ok[2];
-  for (int k = 0; k < 2; ++k) ok[k] = finish(enc[k]);
-  for (int k = 0; k < 2; ++k) {
-    if (!ok[k]) {
-      r.problem = "ffmpeg failed making " + films[k].first + " (its messages: animation/ffmpeg.log); `talus animate` "
+  const std::vector<Film> films = {{"animation.mp4", size}, {"animation.gif", gif}};
+  const std::vector<bool> made = encode(exe, dir, style.fps, n, draw, first, films, log);
+  for (size_t k = 0; k < films.size(); ++k) {
+    if (!made[k]) r.retried += (r.retried.empty() ? "" : ", ") + films[k].name;
+    if (!made[k] && !encode(exe, dir, style.fps, n, draw, first, {films[k]}, log).front()) {
+      r.problem = "ffmpeg failed making " + films[k].name + " (its messages: animation/ffmpeg.log); `talus animate` "
                   "makes it again from animation/rasters/";
       return;
     }
-    r.files.push_back(films[k].first);
+    r.files.push_back(films[k].name);
   }
   fs::remove(log);
   fs::remove_all(fs::path(dir) / "animation" / "png"); // drawn by an earlier run without ffmpeg

@@ -50,6 +50,8 @@ struct AnimationResult {
   int frames = 0;
   /// Empty when the films were made; else why not (FFmpeg missing or failing), in one line.
   std::string problem;
+  /// The films encoded a second time, alone, after their first encoder failed ("" for none).
+  std::string retried;
 };
 
 /// Draws DIR/animation/rasters/<quantity>_*.tif over the hillshade of DIR/maps/ground_elevation.tif

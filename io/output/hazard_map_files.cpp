@@ -170,6 +170,7 @@ void HazardMaps::makeFilm() {
     const AnimationResult r = makeAnimation(outDir_, style);
     for (const auto& f : r.files) recordFile(f);
     animationOutcome_ = r.problem.empty() ? r.files.front() : r.problem;
+    if (!r.retried.empty()) animationOutcome_ += " (encoded again after a failed try: " + r.retried + ")";
   } catch (const InputError& e) {
     animationOutcome_ = e.what();
   }
