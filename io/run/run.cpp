@@ -69,42 +69,8 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
   // Each rank seeded its part (unless resumed: then every rank read every particle).
   const bool seededInParts = scene.seedSlice.active() && !opt.resume;
   guarded([&] {
-    // The outputs' start and frame 0 read every particle as seeded, in one process's order.
-    if (s.ranks.active()) {
-      sim_->gatherSeededInto(s.ranks.comm(), s.viewed.get(), seededInParts ? &scene.seedSlice.index : nullptr);
-      ++s.info.wholeGathers;
-    }
-    s.ranks.onRoot([&] {
-      makeDirectories(res_.outDir);
-      s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
-      s.outputs->start(*s.view);
-    });
-    // Each rank writes its part of a checkpoint or frame where every rank sees the output folder.
-    s.writesInParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
-    if (s.ranks.active() && !s.writesInParts && s.ranks.root()) {
-      s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints "
-                             "and frames are written by rank 0 with every particle, not in parts by each rank");
-      std::fprintf(stderr, "talus: %s\n", s.info.notes.back().c_str());
-    }
-    // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts) and
-    // write their parts of the frames.
-    if (!s.ranks.root())
-      s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_,
-                        s.writesInParts ? res_.outDir : std::string());
-    if (opt.resume) {
-      // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks:
-      // a run checkpointed at N ranks resumes at any M.
-      readCheckpoint(s.checkpointFile, *sim_, s.identity, [&](const StateArchive& a) {
-        if (s.outputs && s.ranks.root()) s.outputs->load(a);
-        else if (s.outputs) s.outputs->loadClock(a); // the others' parts keep no state
-        s.frame = a.getValue<int32_t>("driver/next_frame");
-        s.nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
-        // A resumed run may have another frame interval: its frames continue after this time.
-        if (a.getValue<double>("driver/frame_interval") != s.interval)
-          s.frame = s.interval > 0 ? int(std::floor(sim_->time() / s.interval + 1e-9)) + 1 : 0;
-      });
-      res_.checkpointTime = sim_->time();
-    }
+    startOutputs(scene, seededInParts);
+    if (opt.resume) resume();
     // The first frame before distributing: binning reorders the particles, and one process
     // writes this frame in seeding order.
     if (!opt.resume && s.interval > 0) {
@@ -118,6 +84,48 @@ Run::Run(SceneSetup&& scene, const RunOptions& opt) : s_(std::make_unique<State>
     }
     s.bar = std::make_unique<ProgressBar>(endTime_, stderr, opt.progress && s.ranks.root());
   });
+}
+
+void Run::startOutputs(const SceneSetup& scene, bool seededInParts) {
+  State& s = *s_;
+  // The outputs' start and frame 0 read every particle as seeded, in one process's order.
+  if (s.ranks.active()) {
+    sim_->gatherSeededInto(s.ranks.comm(), s.viewed.get(), seededInParts ? &scene.seedSlice.index : nullptr);
+    ++s.info.wholeGathers;
+  }
+  s.ranks.onRoot([&] {
+    makeDirectories(res_.outDir);
+    s.outputs.emplace(scene.output, scene.runContext(), res_.outDir); // only what [output] asks for
+    s.outputs->start(*s.view);
+  });
+  // Each rank writes its part of a checkpoint or frame where every rank sees the output folder.
+  s.writesInParts = s.ranks.active() && s.ranks.shareFolder(res_.outDir);
+  if (s.ranks.active() && !s.writesInParts && s.ranks.root()) {
+    s.info.notes.push_back(res_.outDir + " is not the same folder on every rank (a node's own disk?): checkpoints "
+                           "and frames are written by rank 0 with every particle, not in parts by each rank");
+    std::fprintf(stderr, "talus: %s\n", s.info.notes.back().c_str());
+  }
+  // The other ranks make the parts of the per-step outputs that reduce (OutputSet::parts) and
+  // write their parts of the frames.
+  if (!s.ranks.root())
+    s.outputs.emplace(OutputSet::PartsOnly{}, scene.output, scene.runContext(), *sim_,
+                      s.writesInParts ? res_.outDir : std::string());
+}
+
+void Run::resume() {
+  State& s = *s_;
+  // Every rank reads the whole checkpoint (one process's arrays), then keeps its own blocks: a
+  // run checkpointed at N ranks resumes at any M.
+  readCheckpoint(s.checkpointFile, *sim_, s.identity, [&](const StateArchive& a) {
+    if (s.outputs && s.ranks.root()) s.outputs->load(a);
+    else if (s.outputs) s.outputs->loadClock(a); // the others' parts keep no state
+    s.frame = a.getValue<int32_t>("driver/next_frame");
+    s.nextCheckpoint = a.getValue<double>("driver/next_checkpoint");
+    // A resumed run may have another frame interval: its frames continue after this time.
+    if (a.getValue<double>("driver/frame_interval") != s.interval)
+      s.frame = s.interval > 0 ? int(std::floor(sim_->time() / s.interval + 1e-9)) + 1 : 0;
+  });
+  res_.checkpointTime = sim_->time();
 }
 
 Run::~Run() = default;

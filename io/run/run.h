@@ -54,6 +54,13 @@ public:
 
 private:
   struct State;
+  /// Before the first step (collective under ranks): every particle as seeded gathered to rank 0,
+  /// which makes the output folder and starts the outputs; the other ranks' outputs make parts.
+  /// Throws WriteError when the folder cannot be made.
+  void startOutputs(const SceneSetup& scene, bool seededInParts);
+  /// The state and the outputs' clocks from the run's checkpoint. Throws InputError when it is
+  /// missing, damaged or of another scene.
+  void resume();
   void afterStep();
   /// Frame s_->frame of the state now (collective under ranks), then the next frame's number.
   void writeFrame();
