@@ -113,14 +113,14 @@ TEST(Animation, AFilmWhoseEncoderFailsOnceIsEncodedAgainAlone) {
   if (test::shell("command -v ffmpeg", real) != 0) GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg)";
   real.erase(real.find_last_not_of('\n') + 1);
   fs::create_directories(dir + "/bin");
-  std::ofstream(dir + "/bin/ffmpeg") << "#!/bin/sh\nif mkdir '" << dir << "/failed_once' 2>/dev/null; then exit 1; fi\nexec '"
+  std::ofstream(dir + "/bin/ffmpeg") << "#!/bin/sh\nif mkdir '" << dir << "/failed_once' 2>/dev/null; then echo a fault of the moment >&2; exit 1; fi\nexec '"
                                      << real << "' \"$@\"\n";
   fs::permissions(dir + "/bin/ffmpeg", fs::perms::owner_all);
   std::string log;
   ASSERT_EQ(test::shell("\"" + kBinary + "\"" + kRun + dir + "/run --set output.report=false", log), 0) << log;
   fs::remove(dir + "/run/animation.mp4");
   ASSERT_EQ(test::shell("PATH=" + dir + "/bin:$PATH \"" + kBinary + "\" animate " + dir + "/run", log), 0) << log;
-  EXPECT_NE(log.find("talus animate: ffmpeg failed making animation.mp4; encoded again alone"), std::string::npos) << log;
+  EXPECT_NE(log.find("talus animate: ffmpeg failed making animation.mp4 (ffmpeg: a fault of the moment); encoded again alone"), std::string::npos) << log;
   EXPECT_TRUE(fs::exists(dir + "/failed_once"));
   if (test::shell("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 " +
                       dir + "/run/animation.mp4", log) != 0) GTEST_SKIP() << "ffprobe is not installed (apt-get install ffmpeg)";

@@ -15,6 +15,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <spawn.h>
@@ -173,6 +174,14 @@ struct IgnoreSigpipe {
   ~IgnoreSigpipe() { sigaction(SIGPIPE, &old, nullptr); }
 };
 
+/// " (ffmpeg: <the first line of `log`>)", or "" when ffmpeg said nothing there.
+std::string firstLine(const std::string& log) {
+  std::ifstream in(log);
+  std::string line;
+  std::getline(in, line);
+  return line.empty() ? "" : " (ffmpeg: " + line.substr(0, 200) + ")";
+}
+
 /// One film: its file name and its ffmpeg filter.
 struct Film {
   std::string name, filter;
@@ -219,7 +228,7 @@ void encodeFilms(const std::string& exe, const std::string& dir, const Animation
   const std::vector<Film> films = {{"animation.mp4", size}, {"animation.gif", gif}};
   const std::vector<bool> made = encode(exe, dir, style.fps, n, draw, first, films, log);
   for (size_t k = 0; k < films.size(); ++k) {
-    if (!made[k]) r.retried += (r.retried.empty() ? "" : ", ") + films[k].name;
+    if (!made[k]) r.retried += (r.retried.empty() ? "" : ", ") + films[k].name + firstLine(log);
     if (!made[k] && !encode(exe, dir, style.fps, n, draw, first, {films[k]}, log).front()) {
       r.problem = "ffmpeg failed making " + films[k].name + " (its messages: animation/ffmpeg.log); `talus animate` "
                   "makes it again from animation/rasters/";

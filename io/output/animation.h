@@ -50,7 +50,8 @@ struct AnimationResult {
   int frames = 0;
   /// Empty when the films were made; else why not (FFmpeg missing or failing), in one line.
   std::string problem;
-  /// The films encoded a second time, alone, after their first encoder failed ("" for none).
+  /// The films encoded a second time, alone, after their first encoder failed, with ffmpeg's
+  /// first message ("" for none).
   std::string retried;
 };
 
