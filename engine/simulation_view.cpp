@@ -4,6 +4,8 @@
 // written from it is one process's file.
 #include "engine/simulation.h"
 
+#include "engine/gathered_parts.h"
+
 #include <numeric>
 #include <string_view>
 
@@ -49,12 +51,8 @@ void Simulation::gatherSeededInto(Communicator& comm, Simulation* view,
         if (key[p] >= first && key[p] - first < window) idx.push_back(uint32_t(p));
       std::vector<char> mine;
       packKeyed(g, idx, key, mine);
-      std::vector<size_t> counts;
-      const std::vector<char> all = comm.gather(mine, counts);
-      if (!to) continue;
-      std::vector<std::string_view> parts;
-      for (size_t at = 0, r = 0; r < counts.size(); at += counts[r++]) parts.emplace_back(all.data() + at, counts[r]);
-      appendInKeyOrder(*to, parts);
+      const GatheredParts all = gatherParts(comm, mine);
+      if (to) appendInKeyOrder(*to, all.parts);
     }
   }
   if (!view) return;

@@ -3,19 +3,12 @@
 #include "io/run/run.h"
 #include "io/run/run_state.h"
 
+#include "engine/gathered_parts.h"
+
 #include <chrono>
 #include <string_view>
 
 namespace talus {
-
-namespace {
-/// The ranks' buffers in one gathered block, `counts` bytes each (none when nothing was gathered).
-std::vector<std::string_view> views(const std::vector<char>& all, const std::vector<size_t>& counts) {
-  std::vector<std::string_view> v;
-  for (size_t r = 0, at = 0; r < counts.size(); at += counts[r++]) v.emplace_back(all.data() + at, counts[r]);
-  return v;
-}
-} // namespace
 
 Run::Agreed Run::stepOnRanks(Agreed mine) {
   State& s = *s_;
@@ -58,12 +51,11 @@ void Run::stepOutputsOnRanks(double dt, uint32_t due, const PartBounds& b) {
   out.mergeParts(*sim_, dt, due, b, buffers);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - o0).count();
   // Rank 0 gathers the owned cells only when it writes them (a film frame).
-  std::vector<char> results;
-  std::vector<size_t> counts;
-  if (out.resultsDue(n)) results = comm.gather(root ? std::vector<char>() : out.results(false, n), counts);
+  GatheredParts results;
+  if (out.resultsDue(n)) results = gatherParts(comm, root ? std::vector<char>() : out.results(false, n));
   s.ranks.onRoot([&] {
     const auto o1 = std::chrono::steady_clock::now();
-    out.mergeResults(*sim_, false, views(results, counts), n);
+    out.mergeResults(*sim_, false, results.parts, n);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - o1).count();
     s.balance.addOutputSeconds(seconds);
   });
@@ -87,9 +79,8 @@ void Run::gatherOutputState() {
   State& s = *s_;
   if (!s.ranks.active() || !s.outputs) return;
   Communicator& comm = s.ranks.comm();
-  std::vector<size_t> counts;
-  const std::vector<char> all = comm.gather(s.ranks.root() ? std::vector<char>() : s.outputs->results(true, comm.size()), counts);
-  s.ranks.onRoot([&] { s.outputs->mergeResults(*s.view, true, views(all, counts), comm.size()); });
+  const GatheredParts all = gatherParts(comm, s.ranks.root() ? std::vector<char>() : s.outputs->results(true, comm.size()));
+  s.ranks.onRoot([&] { s.outputs->mergeResults(*s.view, true, all.parts, comm.size()); });
 }
 
 } // namespace talus
