@@ -8,14 +8,21 @@
 
 namespace talus {
 
-/// The bytes rank 0 gathered and a view of each rank's part in them, in rank order.
+/// The bytes rank 0 gathered and a view of each rank's part in them, in rank order. Moved, never
+/// copied: the parts point into its bytes (a moved vector keeps its storage).
 struct GatheredParts {
   std::vector<char> bytes;
   std::vector<std::string_view> parts; ///< into `bytes`; empty on the other ranks
+
+  GatheredParts() = default;
+  GatheredParts(GatheredParts&&) = default;
+  GatheredParts& operator=(GatheredParts&&) = default;
+  GatheredParts(const GatheredParts&) = delete;
+  GatheredParts& operator=(const GatheredParts&) = delete;
 };
 
 /// Collective: Communicator::gather of `mine`, split into each rank's part on rank 0 (empty
-/// GatheredParts elsewhere). Move the result, not a copy of it: the parts point into its bytes.
+/// GatheredParts elsewhere).
 inline GatheredParts gatherParts(Communicator& comm, const std::vector<char>& mine) {
   GatheredParts g;
   std::vector<size_t> counts;
