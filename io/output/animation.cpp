@@ -211,7 +211,7 @@ std::vector<bool> encode(const std::string& exe, const std::string& dir, int fps
 }
 
 /// The MP4 and the GIF, encoded side by side; a film whose encoder failed is encoded once more
-/// alone (CI once saw a run's MP4 missing beside a busy test, and six reruns under load did not
+/// alone (CI once saw a run's MP4 missing beside a busy test, and five reruns under load did not
 /// see it again: a fault of the moment, such as a thread ffmpeg could not start, should not cost
 /// the film; summary.json says which was encoded twice). The films made go to r.files, a
 /// failure to r.problem.
