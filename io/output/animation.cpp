@@ -228,11 +228,13 @@ void encodeFilms(const std::string& exe, const std::string& dir, const Animation
   const std::vector<Film> films = {{"animation.mp4", size}, {"animation.gif", gif}};
   const std::vector<bool> made = encode(exe, dir, style.fps, n, draw, first, films, log);
   for (size_t k = 0; k < films.size(); ++k) {
-    if (!made[k]) r.retried += (r.retried.empty() ? "" : ", ") + films[k].name + firstLine(log);
-    if (!made[k] && !encode(exe, dir, style.fps, n, draw, first, {films[k]}, log).front()) {
-      r.problem = "ffmpeg failed making " + films[k].name + " (its messages: animation/ffmpeg.log); `talus animate` "
-                  "makes it again from animation/rasters/";
-      return;
+    if (!made[k]) {
+      r.retried += (r.retried.empty() ? "" : ", ") + films[k].name + firstLine(log);
+      if (!encode(exe, dir, style.fps, n, draw, first, {films[k]}, log).front()) {
+        r.problem = "ffmpeg failed making " + films[k].name + " (its messages: animation/ffmpeg.log); `talus animate` "
+                    "makes it again from animation/rasters/";
+        return;
+      }
     }
     r.files.push_back(films[k].name);
   }
