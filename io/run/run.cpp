@@ -171,6 +171,7 @@ void Run::writeFrame() {
   // Each rank writes its rows of the HDF5 and PLY frames and scatters its particles for the VDB
   // volume; rank 0 gathers every particle only for VDB points, or when the ranks do not share
   // the output folder.
+  const WriteHeap heap(s.viewed != nullptr); // the VDB volume's node sums, or the view
   std::optional<WriteError> failure;
   if (s.writesInParts) failure = s.outputs->frameParts(s.ranks.comm(), *sim_, s.frame);
   const bool whole = !s.writesInParts || s.output.framesNeedEveryParticle();
@@ -270,6 +271,7 @@ void Run::finish() {
   if (!interrupted) {
     s.gatherView(*sim_);
     gatherOutputState();
+    const WriteHeap heap(s.viewed != nullptr); // the film's pictures, the maps
     // The end's maps and film take seconds on rank 0 while the others would only wait.
     s.ranks.onRootWithNodeCores(s.threads, [&](int cores) {
       s.withThreads(cores, [&] {

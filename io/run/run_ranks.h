@@ -21,8 +21,10 @@ class RunRanks;
 
 /// Collective: the ranks on rank 0's machine lend it their CPUs. While the loan lives, rank 0's
 /// calling thread may run on the union of their CPU sets (mpirun binds each rank to its own
-/// cores); threads and programs it starts meanwhile inherit that set. The lenders have nothing to
-/// do in the meantime but wait with Communicator::maxOfIdle. Nothing happens without ranks.
+/// cores); programs it starts meanwhile inherit that set. TBB's workers do not (they start on the
+/// set the process began with: measured), but the calling thread, free to move to a lent core,
+/// runs beside them. The lenders have nothing to do in the meantime but wait with
+/// Communicator::maxOfIdle. Nothing happens without ranks.
 class CoreLoan {
 public:
   /// `threadsPerRank`: what each rank runs (the same command line on every rank).
