@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numeric>
 #include <tuple>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -44,29 +43,6 @@ std::vector<double> units(Communicator& comm, const Simulation& local) {
   fastest = comm.maxOf(fastest);
   unit.push_back(unitFor(n * heaviest * fastest));
   return unit;
-}
-
-/// Appends block c (zeroed) to `s`, or finds it; its index.
-size_t blockIndex(NodeSums& s, std::unordered_map<uint64_t, size_t>& index, const BlockCoord& c) {
-  const auto [it, fresh] = index.emplace(blockKey(c), s.blocks.size());
-  if (fresh) s.blocks.push_back(c), s.values.resize(s.values.size() + size_t(s.channels()) * kBlockNodes, 0);
-  return it->second;
-}
-
-/// Sorts the blocks by coordinate (their values with them), so the result does not depend on
-/// the particles' order.
-void sortBlocks(NodeSums& s) {
-  std::vector<size_t> order(s.blocks.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return coordLess(s.blocks[a], s.blocks[b]); });
-  const size_t per = size_t(s.channels()) * kBlockNodes;
-  std::vector<BlockCoord> blocks(s.blocks.size());
-  std::vector<int64_t> values(s.values.size());
-  for (size_t i = 0; i < order.size(); ++i) {
-    blocks[i] = s.blocks[order[i]];
-    std::copy_n(s.values.begin() + ptrdiff_t(order[i] * per), per, values.begin() + ptrdiff_t(i * per));
-  }
-  s.blocks.swap(blocks), s.values.swap(values);
 }
 
 /// Particles by owning block (the block of their stencil's base node), in particle order.
@@ -174,7 +150,7 @@ NodeSums scatterNodeSums(Communicator& comm, const Simulation& local) {
 }
 
 void gatherNodeSums(Communicator& comm, NodeSums& s) {
-  const size_t per = size_t(s.channels()) * kBlockNodes;
+  const size_t per = size_t(s.channels()) * kBlockNodes, bytes = per * sizeof(int64_t);
   std::vector<char> mine; // the block count, the coordinates, the values
   if (comm.rank() != 0) {
     const uint64_t n = s.blocks.size();
@@ -184,32 +160,45 @@ void gatherNodeSums(Communicator& comm, NodeSums& s) {
     if (n) std::memcpy(p, s.blocks.data(), n * sizeof(BlockCoord)), p += n * sizeof(BlockCoord);
     if (n) std::memcpy(p, s.values.data(), s.values.size() * sizeof(int64_t));
   }
-  std::unordered_map<uint64_t, size_t> index;
-  if (comm.rank() == 0 && comm.size() > 1)
-    for (size_t b = 0; b < s.blocks.size(); ++b) index.emplace(blockKey(s.blocks[b]), b);
-  const size_t own = s.blocks.size();
   comm.gatherEach(mine, [](const std::vector<size_t>&) {}, [&](int rank, std::string_view part) {
     if (rank == 0) return; // rank 0's own sums are in place
     uint64_t n = 0;
     if (part.size() < sizeof n) throw std::runtime_error("gatherNodeSums: a part without its block count");
     std::memcpy(&n, part.data(), sizeof n);
-    if (part.size() != sizeof n + n * (sizeof(BlockCoord) + per * sizeof(int64_t)))
+    if (part.size() != sizeof n + n * (sizeof(BlockCoord) + bytes))
       throw std::runtime_error("gatherNodeSums: a part that does not hold whole blocks");
     const char* coords = part.data() + sizeof n;
     const char* values = coords + n * sizeof(BlockCoord);
-    for (size_t b = 0; b < n; ++b) {
+    auto theirs = [&](size_t k) {
       BlockCoord c;
-      std::memcpy(&c, coords + b * sizeof c, sizeof c);
-      const size_t at = blockIndex(s, index, c); // may grow s.values: before taking its data
-      int64_t* to = s.values.data() + at * per;
-      for (size_t i = 0; i < per; ++i) {
-        int64_t v;
-        std::memcpy(&v, values + (b * per + i) * sizeof v, sizeof v);
-        to[i] += v;
-      }
+      std::memcpy(&c, coords + k * sizeof c, sizeof c);
+      return c;
+    };
+    // Both lists are sorted (scatterNodeSums): one merge writes each block of the total once (a
+    // hash of the blocks, the values grown block by block and a sort after took twice as long).
+    std::vector<BlockCoord> blocks;
+    std::vector<int64_t> sums;
+    blocks.reserve(s.blocks.size() + n);
+    sums.reserve((s.blocks.size() + n) * per);
+    size_t a = 0, b = 0;
+    while (a < s.blocks.size() || b < n) {
+      const bool ours = a < s.blocks.size() && (b == n || !coordLess(theirs(b), s.blocks[a]));
+      const bool both = ours && b < n && !coordLess(s.blocks[a], theirs(b));
+      blocks.push_back(ours ? s.blocks[a] : theirs(b));
+      const size_t at = sums.size();
+      sums.resize(at + per);
+      if (ours) std::copy_n(s.values.begin() + ptrdiff_t(a * per), per, sums.begin() + ptrdiff_t(at));
+      else std::memcpy(sums.data() + at, values + b * bytes, bytes);
+      if (both)
+        for (size_t i = 0; i < per; ++i) {
+          int64_t v;
+          std::memcpy(&v, values + b * bytes + i * sizeof v, sizeof v);
+          sums[at + i] += v;
+        }
+      a += ours, b += !ours || both;
     }
+    s.blocks.swap(blocks), s.values.swap(sums);
   });
-  if (comm.rank() == 0 && s.blocks.size() > own) sortBlocks(s); // another rank's blocks were appended
 }
 
 NodeFields nodeFields(const NodeSums& s) {
